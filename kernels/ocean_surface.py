@@ -1,0 +1,140 @@
+"""Device-side lookup of the ocean surface: height, normal and water velocity above world points.
+
+The fields live on a periodic grid (``OceanSurface.fields``, shape (4, n, n), index [field, iy, ix],
+node (ix, iy) at world (ix, iy) * cell size) in the pairs of ``ocean_spectrum``. A grid node q moves
+to q + choppiness * D(q), so the surface above a world point p is the one of the node q with
+q + choppiness * D(q) = p, found by fixed-point iteration q <- p - choppiness * D(q); the iteration
+contracts while the surface does not fold over (choppiness * |grad D| < 1).
+"""
+
+from __future__ import annotations
+
+import warp as wp
+
+from .ocean_spectrum import FIELD_DISPLACEMENT, FIELD_HEIGHT, FIELD_SLOPE, FIELD_VELOCITY
+
+__all__ = [
+    "OceanSurface",
+    "periodic_bilinear",
+    "undisplaced_position",
+    "surface_height",
+    "surface_height_velocity",
+    "surface_normal",
+    "sample_surface_kernel",
+]
+
+
+@wp.struct
+class OceanSurface:
+    """What a kernel needs to read the ocean: the fields and the grid's geometry."""
+
+    fields: wp.array3d(dtype=wp.vec2f)
+    """(4, n, n) field pairs, index [field, iy, ix]."""
+    inv_cell_size: float
+    """1 / grid spacing [1/m]."""
+    resolution: int
+    """Grid points per side."""
+    choppiness: float
+    """Scale of the horizontal displacement."""
+    inversion_iterations: int
+    """Fixed-point iterations of :func:`undisplaced_position` (0 when choppiness is 0)."""
+
+
+@wp.func
+def _wrap(index: int, n: int) -> int:
+    wrapped = index % n
+    if wrapped < 0:
+        wrapped += n
+    return wrapped
+
+
+@wp.func
+def periodic_bilinear(surface: OceanSurface, field: int, xy: wp.vec2) -> wp.vec2f:
+    """Field pair ``field`` at world point ``xy`` [m], bilinear between the four surrounding nodes."""
+    n = surface.resolution
+    gx = xy[0] * surface.inv_cell_size
+    gy = xy[1] * surface.inv_cell_size
+    fx_floor = wp.floor(gx)
+    fy_floor = wp.floor(gy)
+    tx = gx - fx_floor
+    ty = gy - fy_floor
+    # Reduce in float before converting: an int32 of a far-away point would overflow.
+    nf = float(n)
+    ix0 = _wrap(int(fx_floor - wp.floor(fx_floor / nf) * nf), n)
+    iy0 = _wrap(int(fy_floor - wp.floor(fy_floor / nf) * nf), n)
+    ix1 = (ix0 + 1) % n
+    iy1 = (iy0 + 1) % n
+    f = surface.fields
+    lower = (1.0 - tx) * f[field, iy0, ix0] + tx * f[field, iy0, ix1]
+    upper = (1.0 - tx) * f[field, iy1, ix0] + tx * f[field, iy1, ix1]
+    return (1.0 - ty) * lower + ty * upper
+
+
+@wp.func
+def undisplaced_position(surface: OceanSurface, xy: wp.vec2) -> wp.vec2:
+    """The grid position q [m] whose displaced position q + choppiness * D(q) is ``xy`` [m]."""
+    q = xy
+    for _ in range(surface.inversion_iterations):
+        displacement = periodic_bilinear(surface, FIELD_DISPLACEMENT, q)
+        q = xy - surface.choppiness * wp.vec2(displacement[0], displacement[1])
+    return q
+
+
+@wp.func
+def surface_height(surface: OceanSurface, xy: wp.vec2) -> float:
+    """Height of the surface [m] above world point ``xy`` [m] (z up, still water at 0)."""
+    q = undisplaced_position(surface, xy)
+    return periodic_bilinear(surface, FIELD_HEIGHT, q)[0]
+
+
+@wp.func
+def surface_height_velocity(surface: OceanSurface, xy: wp.vec2) -> wp.vec4:
+    """(height [m], u, v, w [m/s]) of the surface above ``xy``: the water velocity is the linear
+    orbital velocity of the surface particle there."""
+    q = undisplaced_position(surface, xy)
+    height_rate = periodic_bilinear(surface, FIELD_HEIGHT, q)
+    horizontal = periodic_bilinear(surface, FIELD_VELOCITY, q)
+    return wp.vec4(height_rate[0], horizontal[0], horizontal[1], height_rate[1])
+
+
+@wp.func
+def surface_normal(surface: OceanSurface, q: wp.vec2) -> wp.vec3:
+    """Unit upward normal of the displaced surface at grid position ``q`` [m]: the cross product of
+    the tangents d(q + c D, h)/dqx and d(q + c D, h)/dqy. The gradient of D is a central difference
+    over one cell of the interpolated field."""
+    half = 0.5 / surface.inv_cell_size
+    c = surface.choppiness
+    d_dx = (
+        periodic_bilinear(surface, FIELD_DISPLACEMENT, q + wp.vec2(half, 0.0))
+        - periodic_bilinear(surface, FIELD_DISPLACEMENT, q - wp.vec2(half, 0.0))
+    ) * surface.inv_cell_size
+    d_dy = (
+        periodic_bilinear(surface, FIELD_DISPLACEMENT, q + wp.vec2(0.0, half))
+        - periodic_bilinear(surface, FIELD_DISPLACEMENT, q - wp.vec2(0.0, half))
+    ) * surface.inv_cell_size
+    slope = periodic_bilinear(surface, FIELD_SLOPE, q)
+    tangent_x = wp.vec3(1.0 + c * d_dx[0], c * d_dx[1], slope[0])
+    tangent_y = wp.vec3(c * d_dy[0], 1.0 + c * d_dy[1], slope[1])
+    return wp.normalize(wp.cross(tangent_x, tangent_y))
+
+
+@wp.kernel(enable_backward=False)
+def sample_surface_kernel(
+    surface: OceanSurface,
+    points: wp.array(dtype=wp.vec2),
+    heights: wp.array(dtype=float),
+    normals: wp.array(dtype=wp.vec3),
+    velocities: wp.array(dtype=wp.vec3),
+    grid_positions: wp.array(dtype=wp.vec2),
+):
+    """Per world point [m]: surface height [m], unit normal, water velocity [m/s] and the grid
+    position whose displaced image is the point [m]."""
+    i = wp.tid()
+    xy = points[i]
+    q = undisplaced_position(surface, xy)
+    height_rate = periodic_bilinear(surface, FIELD_HEIGHT, q)
+    horizontal = periodic_bilinear(surface, FIELD_VELOCITY, q)
+    heights[i] = height_rate[0]
+    velocities[i] = wp.vec3(horizontal[0], horizontal[1], height_rate[1])
+    normals[i] = surface_normal(surface, q)
+    grid_positions[i] = q

@@ -1,0 +1,24 @@
+"""The ``ocean-warp`` command: ``ocean-warp <job> [options]``; ``ocean-warp <job> --help`` for a job's options."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+JOBS = {
+    "ocean": ("ocean_warp.examples.ocean", "a JONSWAP sea: height field and spectrum PNGs"),
+}
+
+
+def main(argv=None) -> None:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = argparse.ArgumentParser(prog="ocean-warp", description=__doc__)
+    parser.add_argument("job", choices=sorted(JOBS), help="; ".join(f"{name}: {text}" for name, (_, text) in JOBS.items()))
+    args, rest = parser.parse_known_args(argv[:1])
+    module_name = JOBS[args.job][0]
+    module = __import__(module_name, fromlist=["main"])
+    module.main(argv[1:] + rest)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,1 @@
+"""Small runnable examples: ``python -m ocean_warp.examples.<name>``."""

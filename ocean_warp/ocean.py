@@ -1,0 +1,184 @@
+"""The spectral ocean: a periodic sea surface evaluated on a grid by tiled inverse FFTs in Warp."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import NamedTuple
+
+import numpy as np
+import warp as wp
+
+from .kernels.ocean_spectrum import (
+    FIELD_COUNT,
+    FIELD_DISPLACEMENT,
+    FIELD_HEIGHT,
+    FIELD_SLOPE,
+    FIELD_VELOCITY,
+    fields_along_x_kernel,
+    packed_spectra,
+    spectra_along_y_kernel,
+    spectrum_cell,
+)
+from .kernels.ocean_surface import OceanSurface, sample_surface_kernel
+from .ocean_config import OceanConfig
+from .wave_grid import RegularWave, build_wave_grid
+
+__all__ = ["Ocean", "FftPlan", "SurfaceSample"]
+
+
+@dataclasses.dataclass(frozen=True)
+class FftPlan:
+    """How the two FFT passes are launched (one block per grid row). :meth:`for_device` gives the
+    defaults measured in ``benchmarks/RESULTS.md``; other values are for benchmarking."""
+
+    block_dim: int
+    """Threads per block (1 on the CPU, where a block runs on one thread)."""
+
+    @staticmethod
+    def for_device(resolution: int, device) -> "FftPlan":
+        if wp.get_device(device).is_cpu:
+            return FftPlan(block_dim=1)
+        # cuFFTDx wants at least two elements per thread; four was fastest on an H100.
+        return FftPlan(block_dim=max(resolution // 4, 1))
+
+
+class SurfaceSample(NamedTuple):
+    """The ocean surface above a set of world points, as numpy arrays on the host."""
+
+    height: np.ndarray
+    """(M,) surface height [m] above each point (z up, still water at 0)."""
+    normal: np.ndarray
+    """(M, 3) unit upward normal of the surface."""
+    velocity: np.ndarray
+    """(M, 3) water velocity at the surface [m/s] (linear orbital velocity)."""
+    grid_position: np.ndarray
+    """(M, 2) the undisplaced grid position [m] whose choppy displacement lands on the point."""
+
+
+class Ocean:
+    """A periodic patch of ocean surface (it tiles the whole plane) from one wave spectrum.
+
+    ``update(t)`` evaluates, on the device, the height, horizontal displacement, slopes and water
+    velocity on the grid at time t [s]; ``sample(xy)`` reads the surface above world points; kernels
+    read it through :attr:`surface` and the ``wp.func`` lookups of ``ocean_warp.kernels.ocean_surface``.
+
+    Example::
+
+        ocean = Ocean(OceanConfig(significant_wave_height=2.0, peak_period=8.0), device="cuda:0")
+        ocean.update(12.5)
+        sample = ocean.sample([[10.0, -3.0], [250.0, 40.0]])
+        sample.height, sample.normal, sample.velocity
+    """
+
+    def __init__(self, config: OceanConfig | None = None, *, device=None, fft_plan: FftPlan | None = None):
+        self.config = config if config is not None else OceanConfig()
+        if not isinstance(self.config, OceanConfig):
+            raise TypeError(f"Ocean expects an OceanConfig, got {type(self.config).__name__}")
+        self.device = wp.get_device(device)
+        n = self.config.resolution
+        self.fft_plan = fft_plan if fft_plan is not None else FftPlan.for_device(n, self.device)
+
+        self.wave_grid = build_wave_grid(self.config)
+        cells_x_major = np.ascontiguousarray(self.wave_grid.cells.transpose(1, 0, 2))
+        self._cells = wp.array(cells_x_major, dtype=spectrum_cell, device=self.device)
+        self.time = wp.zeros(1, dtype=wp.float64, device=self.device)
+        """(1,) float64 time [s] of the fields; kernels may advance it inside a captured graph."""
+        # Pass 1 writes packed_spectra (n, n); pass 2 reads the same bytes as vec4f (n, 2 n).
+        self._spectra_quads = wp.zeros((n, 2 * n), dtype=wp.vec4f, device=self.device)
+        self._spectra = wp.array(ptr=self._spectra_quads.ptr, dtype=packed_spectra, shape=(n, n), device=self.device)
+        self._field_rows = wp.zeros((FIELD_COUNT * n, n), dtype=wp.vec2f, device=self.device)
+        self.fields = self._field_rows.reshape((FIELD_COUNT, n, n))
+        """(4, n, n) vec2f field pairs, index [field, iy, ix]; see ``ocean_warp.kernels.ocean_spectrum``."""
+
+        self.surface = OceanSurface()
+        """The struct kernels take to read this ocean."""
+        self.surface.fields = self.fields
+        self.surface.inv_cell_size = 1.0 / self.config.cell_size
+        self.surface.resolution = n
+        self.surface.choppiness = self.config.choppiness
+        self.surface.inversion_iterations = self.config.inversion_iterations if self.config.choppiness > 0 else 0
+
+        self._along_y = spectra_along_y_kernel(n)
+        self._along_x = fields_along_x_kernel(n)
+        self.update(0.0)
+
+    # --- evaluation -----------------------------------------------------------------------------
+    def update(self, t: float | None = None) -> None:
+        """Evaluate all fields at time ``t`` [s] (None: at the time held in :attr:`time`).
+
+        Asynchronous on CUDA. Inside a captured graph pass None and advance :attr:`time` with a
+        kernel: a Python ``t`` would be frozen into the graph."""
+        if t is not None:
+            if isinstance(t, bool) or not isinstance(t, (int, float, np.floating, np.integer)) or not math.isfinite(t):
+                raise ValueError(f"Ocean.update: t must be a finite time in seconds, got {t!r}")
+            self.time.fill_(float(t))
+        n = self.config.resolution
+        block_dim = self.fft_plan.block_dim
+        wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time], outputs=[self._spectra],
+                        block_dim=block_dim, device=self.device)
+        wp.launch_tiled(self._along_x, dim=[n], inputs=[self._spectra_quads], outputs=[self._field_rows],
+                        block_dim=block_dim, device=self.device)
+
+    # --- reading --------------------------------------------------------------------------------
+    def sample(self, xy) -> SurfaceSample:
+        """The surface above world points ``xy`` (M, 2) [m] at the last update: height, unit normal and
+        water velocity, on the host. Periodic bilinear interpolation; the choppy displacement is
+        inverted so the height is the one above the asked point."""
+        points = np.asarray(xy, dtype=np.float64)
+        if points.ndim == 1 and points.shape == (2,):
+            points = points[None, :]
+        if points.ndim != 2 or points.shape[1] != 2:
+            raise ValueError(f"Ocean.sample: xy must have shape (M, 2) [m], got {points.shape}")
+        if not np.all(np.isfinite(points)):
+            raise ValueError("Ocean.sample: xy holds NaN or infinite coordinates")
+        m = points.shape[0]
+        device = self.device
+        points_wp = wp.array(points.astype(np.float32), dtype=wp.vec2, device=device)
+        heights = wp.empty(m, dtype=float, device=device)
+        normals = wp.empty(m, dtype=wp.vec3, device=device)
+        velocities = wp.empty(m, dtype=wp.vec3, device=device)
+        grid_positions = wp.empty(m, dtype=wp.vec2, device=device)
+        if m:
+            wp.launch(
+                sample_surface_kernel,
+                dim=m,
+                inputs=[self.surface, points_wp],
+                outputs=[heights, normals, velocities, grid_positions],
+                device=device,
+            )
+        return SurfaceSample(heights.numpy(), normals.numpy(), velocities.numpy(), grid_positions.numpy())
+
+    def field_numpy(self, name: str) -> np.ndarray:
+        """One real field on the grid as a host array (n, n), index [iy, ix]: "height" [m],
+        "vertical_velocity" [m/s], "displacement_x"/"displacement_y" [m] (before choppiness),
+        "slope_x"/"slope_y", "velocity_x"/"velocity_y" [m/s]."""
+        layout = {
+            "height": (FIELD_HEIGHT, 0),
+            "vertical_velocity": (FIELD_HEIGHT, 1),
+            "displacement_x": (FIELD_DISPLACEMENT, 0),
+            "displacement_y": (FIELD_DISPLACEMENT, 1),
+            "slope_x": (FIELD_SLOPE, 0),
+            "slope_y": (FIELD_SLOPE, 1),
+            "velocity_x": (FIELD_VELOCITY, 0),
+            "velocity_y": (FIELD_VELOCITY, 1),
+        }
+        if name not in layout:
+            raise ValueError(f"Ocean.field_numpy: unknown field {name!r}; choose one of {', '.join(layout)}")
+        field, component = layout[name]
+        return self.fields.numpy()[field, :, :, component]
+
+    def grid_axis(self) -> np.ndarray:
+        """World coordinates [m] of the grid nodes along x (and y): (n,)."""
+        return np.arange(self.config.resolution) * self.config.cell_size
+
+    @property
+    def regular_wave(self) -> RegularWave | None:
+        """The wave of a "regular" ocean as laid on the grid (wavevector, frequency), else None."""
+        return self.wave_grid.regular_wave
+
+    @property
+    def significant_wave_height(self) -> float:
+        """4 sqrt(variance) [m] of the sea this grid holds: the spectrum's Hs less what falls outside
+        the grid's band (longer than the tile, shorter than two cells or ``min_wavelength``)."""
+        return 4.0 * math.sqrt(self.wave_grid.variance)

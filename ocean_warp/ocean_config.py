@@ -1,0 +1,138 @@
+"""Configuration of the spectral ocean surface."""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+
+from .validation import (
+    require_choice,
+    require_finite,
+    require_int_in_range,
+    require_non_negative,
+    require_positive,
+)
+
+__all__ = ["Spectrum", "OceanConfig", "MIN_RESOLUTION", "MAX_RESOLUTION"]
+
+MIN_RESOLUTION = 16
+"""Smallest grid the tiled FFT runs (points per side)."""
+MAX_RESOLUTION = 2048
+"""Largest grid the tiled FFT runs (points per side): one block holds a whole row."""
+
+
+class Spectrum(str, enum.Enum):
+    """The closed set of sea states an :class:`OceanConfig` can describe."""
+
+    JONSWAP = "jonswap"
+    """Fetch-limited wind sea, DNV-RP-C205 form (see :func:`ocean_warp.spectra.jonswap`)."""
+    PIERSON_MOSKOWITZ = "pierson_moskowitz"
+    """Fully developed sea: from ``wind_speed`` if given, else from Hs and Tp."""
+    REGULAR = "regular"
+    """One Airy wave of ``amplitude``, ``period``, ``direction`` and ``phase``."""
+
+
+@dataclasses.dataclass(frozen=True)
+class OceanConfig:
+    """A periodic square patch of ocean, evaluated on a grid by inverse FFTs.
+
+    The patch repeats without seams in x and y, so it covers the whole plane. Angles are in radians.
+    Invalid values raise ``ValueError`` naming the field.
+    """
+
+    tile_size: float = 256.0
+    """Side of the periodic patch [m]; the longest wave it holds has this wavelength."""
+    resolution: int = 256
+    """Grid points per side: a power of two from 16 to 2048. Grid spacing = tile_size / resolution."""
+    spectrum: Spectrum | str = Spectrum.JONSWAP
+    """"jonswap", "pierson_moskowitz" or "regular"."""
+    significant_wave_height: float = 1.0
+    """Hs [m] of "jonswap", and of "pierson_moskowitz" when ``wind_speed`` is None."""
+    peak_period: float = 6.0
+    """Tp [s] of "jonswap", and of "pierson_moskowitz" when ``wind_speed`` is None."""
+    gamma: float = 3.3
+    """JONSWAP peak enhancement factor, from 1 (Pierson-Moskowitz shape) to 10."""
+    wind_speed: float | None = None
+    """Wind speed at 19.5 m [m/s] for "pierson_moskowitz"; None uses Hs and Tp instead. Ignored otherwise."""
+    direction: float = 0.0
+    """Mean direction the waves travel [rad], from +x counter-clockwise."""
+    spreading: float | None = 10.0
+    """Exponent s of the cos-2s directional spreading (larger = narrower); 0 or None = long-crested."""
+    depth: float = math.inf
+    """Water depth [m]; inf for deep water. Enters the dispersion relation and the orbital motion."""
+    choppiness: float = 0.0
+    """Scale of the horizontal (choppy) displacement; 0 = linear Airy surface, 1 = Gerstner-like."""
+    min_wavelength: float = 0.0
+    """Waves shorter than this [m] are left out (0 keeps all the grid resolves), e.g. to keep waves
+    much shorter than a hull's triangles from aliasing against it."""
+    amplitude: float = 0.5
+    """Amplitude [m] of the "regular" wave (half its height)."""
+    period: float = 6.0
+    """Period [s] of the "regular" wave; its wavevector is snapped to the grid (see ``Ocean.regular_wave``)."""
+    phase: float = 0.0
+    """Phase [rad] of the "regular" wave: h = a cos(k.x - omega t + phase)."""
+    seed: int = 0
+    """Seed of the random amplitudes and phases of the spectral seas: one seed, one sea."""
+    gravity: float = 9.81
+    """Gravitational acceleration [m/s^2]."""
+    inversion_iterations: int = 8
+    """Fixed-point iterations that undo the choppy displacement when sampling (0 to 32)."""
+
+    def __post_init__(self):
+        owner = "OceanConfig"
+        set_field = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731 (frozen dataclass)
+
+        set_field("tile_size", require_positive(owner, "tile_size", self.tile_size, unit=" [m]"))
+        resolution = require_int_in_range(owner, "resolution", self.resolution, MIN_RESOLUTION, MAX_RESOLUTION)
+        if resolution & (resolution - 1):
+            raise ValueError(
+                f"{owner}.resolution must be a power of two from {MIN_RESOLUTION} to {MAX_RESOLUTION} "
+                f"(the tiled FFT needs one), got {resolution}"
+            )
+        set_field("resolution", resolution)
+        set_field("spectrum", require_choice(owner, "spectrum", self.spectrum, Spectrum))
+        set_field(
+            "significant_wave_height",
+            require_non_negative(owner, "significant_wave_height", self.significant_wave_height, unit=" [m]"),
+        )
+        set_field("peak_period", require_positive(owner, "peak_period", self.peak_period, unit=" [s]"))
+        gamma = require_finite(owner, "gamma", self.gamma)
+        if not 1.0 <= gamma <= 10.0:
+            raise ValueError(f"{owner}.gamma must be in [1, 10], got {gamma!r}")
+        set_field("gamma", gamma)
+        if self.wind_speed is not None:
+            set_field("wind_speed", require_positive(owner, "wind_speed", self.wind_speed, unit=" [m/s]"))
+        set_field("direction", require_finite(owner, "direction", self.direction))
+        if self.spreading is not None:
+            spreading = require_non_negative(owner, "spreading", self.spreading)
+            if spreading > 1000.0:
+                raise ValueError(f"{owner}.spreading must be in [0, 1000] or None, got {spreading!r}")
+            set_field("spreading", spreading)
+        set_field("depth", require_positive(owner, "depth", self.depth, allow_inf=True, unit=" [m]"))
+        set_field("choppiness", require_non_negative(owner, "choppiness", self.choppiness))
+        set_field("min_wavelength", require_non_negative(owner, "min_wavelength", self.min_wavelength, unit=" [m]"))
+        set_field("amplitude", require_non_negative(owner, "amplitude", self.amplitude, unit=" [m]"))
+        set_field("period", require_positive(owner, "period", self.period, unit=" [s]"))
+        set_field("phase", require_finite(owner, "phase", self.phase))
+        set_field("seed", require_int_in_range(owner, "seed", self.seed, 0, 2**63 - 1))
+        set_field("gravity", require_positive(owner, "gravity", self.gravity, unit=" [m/s^2]"))
+        set_field(
+            "inversion_iterations",
+            require_int_in_range(owner, "inversion_iterations", self.inversion_iterations, 0, 32),
+        )
+        if self.min_wavelength >= self.tile_size:
+            raise ValueError(
+                f"{owner}.min_wavelength must be shorter than tile_size ({self.tile_size} m), "
+                f"got {self.min_wavelength!r}: it would leave no waves"
+            )
+
+    @property
+    def cell_size(self) -> float:
+        """Grid spacing [m]."""
+        return self.tile_size / self.resolution
+
+    @property
+    def long_crested(self) -> bool:
+        """True when all waves travel in ``direction`` (no directional spreading)."""
+        return self.spreading is None or self.spreading == 0.0

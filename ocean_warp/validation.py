@@ -1,0 +1,78 @@
+"""Checks shared by the config dataclasses: each raises ``ValueError`` naming the field, the value and
+what is allowed, so a bad config fails at construction and not as NaN inside a kernel."""
+
+from __future__ import annotations
+
+import math
+from numbers import Integral, Real
+
+__all__ = [
+    "require_finite",
+    "require_positive",
+    "require_non_negative",
+    "require_in_range",
+    "require_int_in_range",
+    "require_choice",
+]
+
+
+def _describe(owner: str, field: str) -> str:
+    return f"{owner}.{field}"
+
+
+def require_finite(owner: str, field: str, value) -> float:
+    """Return ``value`` as a float if it is a finite real number, else raise ``ValueError``."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise ValueError(f"{_describe(owner, field)} must be a real number, got {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{_describe(owner, field)} must be finite, got {value!r}")
+    return value
+
+
+def require_positive(owner: str, field: str, value, *, allow_inf: bool = False, unit: str = "") -> float:
+    """Return ``value`` as a float if it is > 0 (and finite unless ``allow_inf``), else raise."""
+    if isinstance(value, bool) or not isinstance(value, Real) or math.isnan(float(value)):
+        raise ValueError(f"{_describe(owner, field)} must be a number > 0{unit}, got {value!r}")
+    value = float(value)
+    if math.isinf(value) and not (allow_inf and value > 0):
+        allowed = "a number > 0 or inf" if allow_inf else "a finite number > 0"
+        raise ValueError(f"{_describe(owner, field)} must be {allowed}{unit}, got {value!r}")
+    if value <= 0.0:
+        raise ValueError(f"{_describe(owner, field)} must be > 0{unit}, got {value!r}")
+    return value
+
+
+def require_non_negative(owner: str, field: str, value, *, unit: str = "") -> float:
+    """Return ``value`` as a float if it is finite and >= 0, else raise ``ValueError``."""
+    value = require_finite(owner, field, value)
+    if value < 0.0:
+        raise ValueError(f"{_describe(owner, field)} must be >= 0{unit}, got {value!r}")
+    return value
+
+
+def require_in_range(owner: str, field: str, value, low: float, high: float, *, unit: str = "") -> float:
+    """Return ``value`` as a float if ``low <= value <= high``, else raise ``ValueError``."""
+    value = require_finite(owner, field, value)
+    if not low <= value <= high:
+        raise ValueError(f"{_describe(owner, field)} must be in [{low}, {high}]{unit}, got {value!r}")
+    return value
+
+
+def require_int_in_range(owner: str, field: str, value, low: int, high: int) -> int:
+    """Return ``value`` as an int if it is an integer with ``low <= value <= high``, else raise."""
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise ValueError(f"{_describe(owner, field)} must be an integer in [{low}, {high}], got {value!r}")
+    value = int(value)
+    if not low <= value <= high:
+        raise ValueError(f"{_describe(owner, field)} must be an integer in [{low}, {high}], got {value!r}")
+    return value
+
+
+def require_choice(owner: str, field: str, value, enum_type):
+    """Return the member of ``enum_type`` (a str-valued Enum) named by ``value``, else raise."""
+    try:
+        return enum_type(value)
+    except ValueError:
+        allowed = ", ".join(repr(member.value) for member in enum_type)
+        raise ValueError(f"{_describe(owner, field)} must be one of {allowed}, got {value!r}") from None

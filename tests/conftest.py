@@ -1,0 +1,49 @@
+"""Test devices and fresh random numbers.
+
+Every test that takes ``device`` runs on "cpu" and, where Warp sees a GPU, on "cuda:0" too.
+``pytest --device cpu`` (or ``cuda``) restricts the run to one of them.
+"""
+
+import logging
+
+import numpy as np
+import pytest
+import warp as wp
+
+wp.config.log_level = logging.WARNING  # no module-load chatter in test logs
+wp.init()
+
+
+def pytest_addoption(parser):
+    parser.addoption(
+        "--device",
+        action="store",
+        default="all",
+        choices=("all", "cpu", "cuda"),
+        help="Warp device(s) to test on: cpu, cuda, or all available (default).",
+    )
+
+
+def _devices(choice: str) -> list[str]:
+    has_cuda = wp.get_cuda_device_count() > 0
+    if choice == "cpu":
+        return ["cpu"]
+    if choice == "cuda":
+        return ["cuda:0"] if has_cuda else []
+    return ["cpu"] + (["cuda:0"] if has_cuda else [])
+
+
+def pytest_generate_tests(metafunc):
+    if "device" in metafunc.fixturenames:
+        devices = _devices(metafunc.config.getoption("--device"))
+        if not devices:
+            pytest.skip("no CUDA device for --device cuda")
+        metafunc.parametrize("device", devices)
+
+
+@pytest.fixture
+def rng(request):
+    """A numpy Generator with a fresh seed per test; the seed is printed when the test fails."""
+    seed = int(np.random.SeedSequence().generate_state(1)[0])
+    print(f"rng seed for {request.node.name}: {seed}")
+    return np.random.default_rng(seed)

@@ -1,0 +1,87 @@
+"""A "regular" ocean is one Airy wave: heights, velocities and phase speed against linear wave theory.
+
+The expected wavenumber comes from the test's own root-finding of omega^2 = g k tanh(k h); the tile is
+chosen so that the wave fits it exactly.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from ocean_warp import Ocean, OceanConfig
+
+GRAVITY = 9.81
+
+
+def airy_wavenumber(period: float, depth: float) -> float:
+    omega = 2 * math.pi / period
+    if math.isinf(depth):
+        return omega**2 / GRAVITY
+    return brentq(lambda k: GRAVITY * k * math.tanh(k * depth) - omega**2, 1e-9, 10 * omega**2 / GRAVITY + 10)
+
+
+def regular_ocean(rng, device, depth, grid_steps=(3, 2)):
+    """A regular wave whose wavevector is grid_steps * (2 pi / tile)."""
+    period = float(rng.uniform(3.0, 9.0))
+    k = airy_wavenumber(period, depth)
+    tile = math.hypot(*grid_steps) * 2 * math.pi / k
+    amplitude = float(rng.uniform(0.1, 1.5))
+    phase = float(rng.uniform(-math.pi, math.pi))
+    direction = math.atan2(grid_steps[1], grid_steps[0])
+    config = OceanConfig(spectrum="regular", tile_size=tile, resolution=512, amplitude=amplitude, period=period,
+                         direction=direction, phase=phase, depth=depth)
+    wavevector = k * np.array([math.cos(direction), math.sin(direction)])
+    return Ocean(config, device=device), amplitude, wavevector, 2 * math.pi / period, phase
+
+
+@pytest.mark.parametrize("depth", [math.inf, 12.0, 4.0])
+def test_regular_wave_heights_and_velocities(device, rng, depth):
+    ocean, a, k_vec, omega, phase = regular_ocean(rng, device, depth)
+    k = np.linalg.norm(k_vec)
+    depth_factor = 1.0 if math.isinf(depth) else 1.0 / math.tanh(k * depth)
+    for t in rng.uniform(0.0, 3600.0, size=3):
+        ocean.update(float(t))
+        points = rng.uniform(-500.0, 500.0, size=(200, 2))
+        sample = ocean.sample(points)
+        theta = points @ k_vec - omega * t + phase
+        np.testing.assert_allclose(sample.height, a * np.cos(theta), atol=1e-3 * a, rtol=0)
+        # Linear theory at the surface: w = a omega sin(theta), horizontal u = a omega coth(k h) cos(theta).
+        np.testing.assert_allclose(sample.velocity[:, 2], a * omega * np.sin(theta), atol=2e-3 * a * omega, rtol=0)
+        horizontal = a * omega * depth_factor * np.cos(theta)[:, None] * k_vec / k
+        np.testing.assert_allclose(sample.velocity[:, :2], horizontal, atol=2e-3 * a * omega * depth_factor, rtol=0)
+        normal = np.stack([a * k_vec[0] * np.sin(theta), a * k_vec[1] * np.sin(theta), np.ones_like(theta)], 1)
+        normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+        np.testing.assert_allclose(sample.normal, normal, atol=2e-3)
+
+
+@pytest.mark.parametrize("depth", [math.inf, 6.0])
+def test_regular_wave_phase_speed_obeys_dispersion(device, rng, depth):
+    ocean, a, k_vec, omega, _ = regular_ocean(rng, device, depth, grid_steps=(4, 0))
+    k = np.linalg.norm(k_vec)
+    expected_speed = math.sqrt(GRAVITY / k * math.tanh(k * depth)) if math.isfinite(depth) else math.sqrt(GRAVITY / k)
+    # Track the phase of the wave along its direction of travel between two times.
+    x = np.linspace(0.0, 2 * math.pi / k, 64, endpoint=False)
+    points = np.stack([x, np.full_like(x, rng.uniform(0, 100))], 1)
+
+    def phase_at(t):
+        ocean.update(t)
+        heights = ocean.sample(points).height
+        return np.angle(np.sum(heights * np.exp(-1j * k * x)))
+
+    t0 = float(rng.uniform(0, 100))
+    dt = 0.2 * 2 * math.pi / omega  # a fifth of a period: no phase wrap ambiguity
+    shift = math.remainder(phase_at(t0) - phase_at(t0 + dt), 2 * math.pi)
+    measured_speed = shift / k / dt
+    assert measured_speed == pytest.approx(expected_speed, rel=1e-3)
+
+
+def test_regular_wave_snaps_to_grid_with_warning(device):
+    config = OceanConfig(spectrum="regular", tile_size=100.0, resolution=64, period=5.3, direction=0.3)
+    with pytest.warns(UserWarning, match="snapped to the grid"):
+        ocean = Ocean(config, device=device)
+    wave = ocean.regular_wave
+    dk = 2 * math.pi / 100.0
+    assert wave.wavevector[0] / dk == pytest.approx(round(wave.wavevector[0] / dk), abs=1e-9)
+    assert wave.omega**2 == pytest.approx(GRAVITY * wave.wavenumber, rel=1e-12)
