@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
 # GPU session: the CUDA half of the test suite, then the benchmarks, logs and JSON into $OUT (or ./out/gpu).
 # Usage on a CUDA machine with the project installed:  bash benchmarks/run_gpu.sh [stage ...]
-# Stages: tests, ocean, sweep, passes, ocean_cpu (default: all).
+# Stages: tests, ocean, sweep, passes, ocean_cpu, hull, hull_flat, hull_blocks (default: all).
 set -uo pipefail
 out=${OUT:-out/gpu}
 mkdir -p "$out"
-stages=${*:-tests ocean sweep passes ocean_cpu}
+stages=${*:-tests ocean sweep passes ocean_cpu hull hull_flat hull_blocks}
 export PYTHONUNBUFFERED=1
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/gpu.txt"
 for stage in $stages; do
   start=$(date +%s)
   case $stage in
-    tests) timeout 300 python -m pytest -q -x --device cuda tests 2>&1 | tail -n 30 | tee "$out/tests.txt" ;;
+    tests) timeout 400 python -m pytest -q --device cuda tests 2>&1 | tail -n 30 | tee "$out/tests.txt" ;;
     ocean) timeout 240 python benchmarks/bench_ocean.py --device cuda:0 --sizes 256 512 1024 --json "$out/ocean.json" 2>&1 | tee "$out/ocean.txt" ;;
     sweep) timeout 300 python benchmarks/bench_ocean.py --device cuda:0 --sizes 512 --sweep 256 512 1024 --json "$out/sweep.json" 2>&1 | tee "$out/sweep.txt" ;;
     ocean_cpu) timeout 200 python benchmarks/bench_ocean.py --device cpu --sizes 256 512 --json "$out/ocean_cpu.json" 2>&1 | tee "$out/ocean_cpu.txt" ;;
     passes) timeout 200 python benchmarks/ocean_passes.py --sizes 256 512 1024 2>&1 | tee "$out/passes.txt" ;;
+    hull) timeout 420 python benchmarks/bench_hull.py --device cuda:0 --json "$out/hull.json" 2>&1 | tee "$out/hull.txt" ;;
+    hull_flat) timeout 200 python benchmarks/bench_hull.py --device cuda:0 --boats 4096 16384 --triangles 2000 --choppiness 0 --json "$out/hull_flat.json" 2>&1 | tee "$out/hull_flat.txt" ;;
+    hull_blocks) timeout 200 python benchmarks/bench_hull.py --device cuda:0 --boats 4096 --triangles 500 2000 8000 --block-dim 32 64 128 256 2>&1 | tee "$out/hull_blocks.txt" ;;
     *) echo "unknown stage $stage" ;;
   esac
   echo "stage $stage took $(( $(date +%s) - start )) s"

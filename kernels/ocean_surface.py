@@ -33,7 +33,9 @@ class OceanSurface:
     inv_cell_size: float
     """1 / grid spacing [1/m]."""
     resolution: int
-    """Grid points per side."""
+    """Grid points per side (a power of two)."""
+    index_mask: int
+    """resolution - 1: ``i & index_mask`` wraps any grid index, negative ones too (two's complement)."""
     choppiness: float
     """Scale of the horizontal displacement."""
     inversion_iterations: int
@@ -41,29 +43,23 @@ class OceanSurface:
 
 
 @wp.func
-def _wrap(index: int, n: int) -> int:
-    wrapped = index % n
-    if wrapped < 0:
-        wrapped += n
-    return wrapped
-
-
-@wp.func
 def periodic_bilinear(surface: OceanSurface, field: int, xy: wp.vec2) -> wp.vec2f:
-    """Field pair ``field`` at world point ``xy`` [m], bilinear between the four surrounding nodes."""
-    n = surface.resolution
+    """Field pair ``field`` at world point ``xy`` [m], bilinear between the four surrounding nodes.
+    Valid within 2^31 grid cells of the origin."""
+    mask = surface.index_mask
     gx = xy[0] * surface.inv_cell_size
     gy = xy[1] * surface.inv_cell_size
     fx_floor = wp.floor(gx)
     fy_floor = wp.floor(gy)
     tx = gx - fx_floor
     ty = gy - fy_floor
-    # Reduce in float before converting: an int32 of a far-away point would overflow.
-    nf = float(n)
-    ix0 = _wrap(int(fx_floor - wp.floor(fx_floor / nf) * nf), n)
-    iy0 = _wrap(int(fy_floor - wp.floor(fy_floor / nf) * nf), n)
-    ix1 = (ix0 + 1) % n
-    iy1 = (iy0 + 1) % n
+    # The grid is a power of two: a mask wraps the indices, with no integer division.
+    ix = int(fx_floor)
+    iy = int(fy_floor)
+    ix0 = ix & mask
+    iy0 = iy & mask
+    ix1 = (ix + 1) & mask
+    iy1 = (iy + 1) & mask
     f = surface.fields
     lower = (1.0 - tx) * f[field, iy0, ix0] + tx * f[field, iy0, ix1]
     upper = (1.0 - tx) * f[field, iy1, ix0] + tx * f[field, iy1, ix1]

@@ -29,10 +29,19 @@ def _map_sibling_subpackages() -> None:
 
 _map_sibling_subpackages()
 
+from .boat_type import BoatType  # noqa: E402
+from .fleet import BoatStatus, Fleet, FleetTensors  # noqa: E402
+from .hull import Hull, HullRepairWarning  # noqa: E402
+from .hydrodynamics_config import HydrodynamicsConfig  # noqa: E402
 from .ocean import FftPlan, Ocean, SurfaceSample  # noqa: E402
 from .ocean_config import OceanConfig, Spectrum  # noqa: E402
+from .simulator import Simulator, SimulatorConfig  # noqa: E402
 from .wave_grid import RegularWave  # noqa: E402
 
-__all__ = ["Ocean", "OceanConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan"]
+__all__ = [
+    "Ocean", "OceanConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan",
+    "Hull", "HullRepairWarning", "BoatType", "HydrodynamicsConfig",
+    "Fleet", "FleetTensors", "BoatStatus", "Simulator", "SimulatorConfig",
+]
 
 __version__ = "0.1.0"

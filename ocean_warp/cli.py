@@ -7,6 +7,7 @@ import sys
 
 JOBS = {
     "ocean": ("ocean_warp.examples.ocean", "a JONSWAP sea: height field and spectrum PNGs"),
+    "drop-hulls": ("ocean_warp.examples.drop_hulls", "hulls of several shapes dropped into waves: heave and roll"),
 }
 
 

@@ -76,7 +76,7 @@ class OceanConfig:
     """Seed of the random amplitudes and phases of the spectral seas: one seed, one sea."""
     gravity: float = 9.81
     """Gravitational acceleration [m/s^2]."""
-    inversion_iterations: int = 8
+    inversion_iterations: int = 6
     """Fixed-point iterations that undo the choppy displacement when sampling (0 to 32)."""
 
     def __post_init__(self):

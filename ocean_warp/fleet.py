@@ -1,0 +1,249 @@
+"""The state of many boats as device arrays (structure of arrays), readable from torch without copies."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import NamedTuple
+
+import numpy as np
+import warp as wp
+
+from .boat_type import BoatType
+from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, HullMeshes, vec6
+from .kernels.rigid_body import (
+    STATUS_CAPSIZED,
+    STATUS_FLYING,
+    STATUS_NONFINITE,
+    STATUS_SUNK,
+    BodyParameters,
+    mat66,
+    reset_boats,
+    reset_swept_rates,
+)
+from .torch_streams import ordered_with_torch
+
+__all__ = ["Fleet", "FleetTensors", "BoatStatus"]
+
+
+class BoatStatus:
+    """Bits of ``Fleet.status``; a boat is healthy when its status is 0. Flags stay until a reset."""
+
+    NONFINITE = int(STATUS_NONFINITE)
+    """Its state turned NaN or infinite; it is frozen at its last finite state."""
+    CAPSIZED = int(STATUS_CAPSIZED)
+    """Tilted beyond ``SimulatorConfig.max_tilt``."""
+    FLYING = int(STATUS_FLYING)
+    """Origin above ``SimulatorConfig.max_altitude``."""
+    SUNK = int(STATUS_SUNK)
+    """Origin below ``-SimulatorConfig.max_depth``."""
+
+
+class FleetTensors(NamedTuple):
+    """torch views of the fleet's arrays (no copies: writes go straight to the simulator's memory)."""
+
+    position: object
+    """(N, 3) body origin in the world frame [m]."""
+    orientation: object
+    """(N, 4) body -> world quaternion (x, y, z, w)."""
+    velocity: object
+    """(N, 6) Fossen's nu: body-frame velocity of the origin [m/s] and angular velocity [rad/s]."""
+    status: object
+    """(N,) int32 ``BoatStatus`` bits."""
+    wrench_world: object
+    """(N, 6) external force [N] at the centre of mass and couple [N m], world frame (inputs)."""
+    wrench_body: object
+    """(N, 6) the same in the body frame (inputs, e.g. foils and propellers)."""
+    hydro_wrench: object
+    """(N, 6) water's force [N] and moment about the origin [N m], body frame (output)."""
+
+
+class Fleet:
+    """N boats of one or a few :class:`BoatType`, their state on one device.
+
+    ``Fleet(boat_type, 4096)`` gives 4096 boats of one type; ``Fleet([a, b], types=[0, 1, 1, 0])``
+    mixes types. All boats start at the origin, upright and at rest: place them with :meth:`reset`.
+    """
+
+    def __init__(self, boat_types: BoatType | Sequence[BoatType], count: int | None = None, *,
+                 types: Sequence[int] | None = None, device=None):
+        self.boat_types = [boat_types] if isinstance(boat_types, BoatType) else list(boat_types)
+        if not self.boat_types or not all(isinstance(t, BoatType) for t in self.boat_types):
+            raise ValueError("Fleet: boat_types must be a BoatType or a non-empty sequence of them")
+        type_of_boat = _type_of_boat(len(self.boat_types), count, types)
+        self.device = wp.get_device(device)
+        self.count = len(type_of_boat)
+        device = self.device
+
+        vertex_counts = np.array([t.hull.vertex_count for t in self.boat_types], dtype=np.int64)
+        triangle_counts = np.array([t.hull.triangle_count for t in self.boat_types], dtype=np.int64)
+        self.max_vertex_count = int(vertex_counts.max())
+        if self.max_vertex_count > MAX_HULL_VERTICES:
+            raise ValueError(f"Fleet: a hull has {self.max_vertex_count} vertices; the hull-force pass holds at most "
+                             f"{MAX_HULL_VERTICES} per boat in fast memory. Use a coarser physics mesh (Hull(..., "
+                             "visual=fine_mesh) keeps the fine one for viewers)")
+        self.max_triangle_count = int(triangle_counts.max())
+        boat_triangles = triangle_counts[type_of_boat]
+        if boat_triangles.sum() >= 2**31:
+            raise ValueError(f"Fleet: {self.count} boats hold more than 2^31 triangles")
+
+        self.hull_type = wp.array(type_of_boat.astype(np.int32), dtype=int, device=device)
+        self.triangle_offset = wp.array(_exclusive_sum(boat_triangles), dtype=int, device=device)
+        self.total_triangles = int(boat_triangles.sum())
+
+        n = self.count
+        self.position = wp.zeros(n, dtype=wp.vec3, device=device)
+        """(N,) body origin in the world frame [m]."""
+        self.orientation = wp.array(np.tile([0.0, 0.0, 0.0, 1.0], (n, 1)).astype(np.float32), dtype=wp.quat, device=device)
+        """(N,) body -> world quaternion (x, y, z, w)."""
+        self.velocity = wp.zeros(n, dtype=vec6, device=device)
+        """(N,) Fossen's nu = (u, v, w, p, q, r), body frame [m/s, rad/s]."""
+        self.status = wp.zeros(n, dtype=int, device=device)
+        """(N,) :class:`BoatStatus` bits."""
+        self.wrench_world = wp.zeros(n, dtype=vec6, device=device)
+        """(N,) external force at the centre of mass [N] and couple [N m], world frame."""
+        self.wrench_body = wp.zeros(n, dtype=vec6, device=device)
+        """(N,) external force at the centre of mass [N] and couple [N m], body frame."""
+        self.hydro_wrench = wp.zeros(n, dtype=vec6, device=device)
+        """(N,) the water's force [N] and moment about the origin [N m], body frame (computed)."""
+        self.water_velocity = wp.zeros(n, dtype=wp.vec3, device=device)
+        """(N,) orbital velocity of the water at each boat's origin, body frame [m/s] (computed)."""
+        self.swept_rate = wp.full(max(self.total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device)
+        """Per boat and hull triangle: last swept rate A_sub |v| for slamming [m^3/s]."""
+
+        self.meshes = _hull_meshes(self.boat_types, device)
+        self.body = _body_parameters(self.boat_types, device)
+        self._tensors = None
+
+    # --- torch --------------------------------------------------------------------------------------
+    @property
+    def tensors(self) -> FleetTensors:
+        """torch views of the state and wrench arrays, bound once; no copies."""
+        if self._tensors is None:
+            self._tensors = FleetTensors(*(wp.to_torch(a) for a in (
+                self.position, self.orientation, self.velocity, self.status, self.wrench_world,
+                self.wrench_body, self.hydro_wrench)))
+        return self._tensors
+
+    # --- resets -------------------------------------------------------------------------------------
+    def reset(self, boats=None, *, position, orientation=None, velocity=None) -> None:
+        """Place the chosen boats (indices, or None for all) at ``position`` (K, 3) [m] with
+        ``orientation`` (K, 4) quaternions x y z w (default upright) and ``velocity`` (K, 6) Fossen nu
+        (default at rest); their status flags, external wrenches and slamming history are cleared.
+        Single rows broadcast to all K boats."""
+        indices = self._indices(boats)
+        k = len(indices)
+        position = _rows("position", position, k, 3)
+        orientation = _rows("orientation", [0.0, 0.0, 0.0, 1.0] if orientation is None else orientation, k, 4)
+        velocity = _rows("velocity", np.zeros(6) if velocity is None else velocity, k, 6)
+        norms = np.linalg.norm(orientation, axis=1)
+        if np.any(norms < 1e-6):
+            raise ValueError("Fleet.reset: orientation quaternions must not be zero")
+        if k == 0:
+            return
+        device = self.device
+        with ordered_with_torch(device):
+            boats_wp = wp.array(indices, dtype=int, device=device)
+            wp.launch(reset_boats, dim=k, device=device, inputs=[
+                boats_wp, wp.array(position, dtype=wp.vec3, device=device),
+                wp.array(orientation / norms[:, None], dtype=wp.quat, device=device),
+                wp.array(velocity, dtype=vec6, device=device)],
+                outputs=[self.position, self.orientation, self.velocity, self.status, self.wrench_world,
+                         self.wrench_body])
+            wp.launch(reset_swept_rates, dim=(k, self.max_triangle_count), device=device,
+                      inputs=[boats_wp, self.hull_type, self.meshes.triangle_count, self.triangle_offset,
+                              float(NO_SWEPT_RATE)], outputs=[self.swept_rate])
+
+    def _indices(self, boats) -> np.ndarray:
+        if boats is None:
+            return np.arange(self.count, dtype=np.int32)
+        if hasattr(boats, "detach"):  # torch tensor
+            boats = boats.detach().cpu().numpy()
+        indices = np.asarray(boats).reshape(-1)
+        if indices.size and not np.issubdtype(indices.dtype, np.integer):
+            raise ValueError(f"Fleet.reset: boats must be integer indices, got dtype {indices.dtype}")
+        if indices.size and (indices.min() < 0 or indices.max() >= self.count):
+            raise ValueError(f"Fleet.reset: boat indices must lie in [0, {self.count - 1}], got "
+                             f"[{indices.min()}, {indices.max()}]")
+        return indices.astype(np.int32)
+
+    # --- host copies, for inspection and tests --------------------------------------------------------
+    def numpy(self) -> dict[str, np.ndarray]:
+        """Host copies of position, orientation, velocity, status and hydro_wrench (after torch's
+        pending writes to them)."""
+        with ordered_with_torch(self.device):
+            return {name: getattr(self, name).numpy() for name in
+                    ("position", "orientation", "velocity", "status", "hydro_wrench")}
+
+
+def _type_of_boat(type_count: int, count, types) -> np.ndarray:
+    if types is not None:
+        type_of_boat = np.asarray(types)
+        if type_of_boat.ndim != 1 or type_of_boat.size == 0 or not np.issubdtype(type_of_boat.dtype, np.integer):
+            raise ValueError("Fleet: types must be a non-empty sequence of integer boat-type indices")
+        if type_of_boat.min() < 0 or type_of_boat.max() >= type_count:
+            raise ValueError(f"Fleet: types must lie in [0, {type_count - 1}]")
+        if count is not None and count != type_of_boat.size:
+            raise ValueError(f"Fleet: count {count} disagrees with len(types) {type_of_boat.size}")
+        return type_of_boat.astype(np.int64)
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
+        raise ValueError(f"Fleet: count must be an integer >= 1 (or give types), got {count!r}")
+    if type_count != 1:
+        raise ValueError("Fleet: with several boat types, say which boat has which with types=[...]")
+    return np.zeros(int(count), dtype=np.int64)
+
+
+def _exclusive_sum(counts: np.ndarray) -> np.ndarray:
+    return (np.cumsum(counts) - counts).astype(np.int32)
+
+
+def _rows(name: str, value, k: int, width: int) -> np.ndarray:
+    if hasattr(value, "detach"):
+        value = value.detach().cpu().numpy()
+    array = np.asarray(value, dtype=np.float64)
+    if array.shape == (width,):
+        array = np.tile(array, (k, 1))
+    if array.shape != (k, width):
+        raise ValueError(f"Fleet.reset: {name} must have shape ({k}, {width}) or ({width},), got {array.shape}")
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"Fleet.reset: {name} holds NaN or infinite values")
+    return array.astype(np.float32)
+
+
+def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:
+    hulls = [t.hull for t in boat_types]
+    vertex_counts = np.array([h.vertex_count for h in hulls])
+    triangle_counts = np.array([h.triangle_count for h in hulls])
+    meshes = HullMeshes()
+    meshes.vertices = wp.array(np.concatenate([h.vertices for h in hulls]).astype(np.float32), dtype=wp.vec3,
+                               device=device)
+    meshes.triangles = wp.array(np.concatenate([_triangles_by_height(h) for h in hulls]).astype(np.int32),
+                                dtype=wp.vec3i, device=device)
+    meshes.vertex_start = wp.array(_exclusive_sum(vertex_counts), dtype=int, device=device)
+    meshes.vertex_count = wp.array(vertex_counts.astype(np.int32), dtype=int, device=device)
+    meshes.triangle_start = wp.array(_exclusive_sum(triangle_counts), dtype=int, device=device)
+    meshes.triangle_count = wp.array(triangle_counts.astype(np.int32), dtype=int, device=device)
+    meshes.reference_length = wp.array([h.length for h in hulls], dtype=float, device=device)
+    meshes.surface_area = wp.array([h.surface_area for h in hulls], dtype=float, device=device)
+    meshes.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
+    return meshes
+
+
+def _triangles_by_height(hull) -> np.ndarray:
+    """The hull's triangles ordered by the height of their centroids. A boat floats roughly upright,
+    so neighbouring threads then mostly find their triangles all wet or all dry: on an H100 a warp
+    executed 11 of its 32 threads on average with the mesh's own order."""
+    centroid_z = hull.vertices[hull.triangles][:, :, 2].mean(axis=1)
+    return hull.triangles[np.argsort(centroid_z, kind="stable")]
+
+
+def _body_parameters(boat_types: list[BoatType], device) -> BodyParameters:
+    body = BodyParameters()
+    body.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
+    body.center_of_mass = wp.array(np.array([t.center_of_mass for t in boat_types]), dtype=wp.vec3, device=device)
+    body.inertia_origin = wp.array(np.array([t.inertia_about_origin for t in boat_types]), dtype=wp.mat33, device=device)
+    body.added_mass = wp.array(np.array([t.added_mass for t in boat_types]), dtype=mat66, device=device)
+    body.mass_matrix = wp.array(np.array([t.mass_matrix for t in boat_types]), dtype=mat66, device=device)
+    body.linear_damping = wp.array(np.array([t.linear_damping for t in boat_types]), dtype=vec6, device=device)
+    body.quadratic_damping = wp.array(np.array([t.quadratic_damping for t in boat_types]), dtype=vec6, device=device)
+    return body
+

@@ -1,0 +1,159 @@
+"""The Simulator: an ocean and a fleet advanced together, one captured CUDA graph per step."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import warp as wp
+
+from .fleet import Fleet
+from .hydrodynamics_config import HydrodynamicsConfig
+from .kernels.hull_forces import WaterModel, hull_wrenches_kernel
+from .kernels.rigid_body import SafetyBounds, advance_time, integrate_boats
+from .ocean import Ocean
+from .torch_streams import ordered_with_torch
+from .validation import require_in_range, require_int_in_range, require_positive
+
+__all__ = ["Simulator", "SimulatorConfig"]
+
+
+@dataclasses.dataclass(frozen=True)
+class SimulatorConfig:
+    """Time stepping and the limits past which a boat is flagged."""
+
+    dt: float = 0.01
+    """Duration of one ``step()`` [s]."""
+    substeps: int = 4
+    """Substeps per step: ocean, water forces and integration run this often, each dt / substeps."""
+    hydrodynamics: HydrodynamicsConfig = dataclasses.field(default_factory=HydrodynamicsConfig)
+    """Water and the per-triangle force model."""
+    ocean_every_substep: bool = True
+    """Re-evaluate the ocean every substep (True) or once per step, at its start (False, cheaper)."""
+    max_altitude: float = 20.0
+    """A boat whose origin rises this far above still water is flagged FLYING [m]."""
+    max_depth: float = 50.0
+    """A boat whose origin sinks this deep is flagged SUNK [m]."""
+    max_tilt: float = math.pi / 2
+    """A boat whose z axis tilts further than this from the vertical is flagged CAPSIZED [rad]."""
+    block_dim: int | None = None
+    """Threads per boat in the hull-force pass; None: 1 on the CPU, 128 on CUDA (fastest on an H100)."""
+    capture_graph: bool = True
+    """On CUDA, capture one step as a graph on the first call and replay it afterwards."""
+
+    def __post_init__(self):
+        owner = "SimulatorConfig"
+        object.__setattr__(self, "dt", require_positive(owner, "dt", self.dt, unit=" [s]"))
+        object.__setattr__(self, "substeps", require_int_in_range(owner, "substeps", self.substeps, 1, 1000))
+        if not isinstance(self.hydrodynamics, HydrodynamicsConfig):
+            raise ValueError(f"{owner}.hydrodynamics must be a HydrodynamicsConfig, got {self.hydrodynamics!r}")
+        object.__setattr__(self, "max_altitude", require_positive(owner, "max_altitude", self.max_altitude, unit=" [m]"))
+        object.__setattr__(self, "max_depth", require_positive(owner, "max_depth", self.max_depth, unit=" [m]"))
+        object.__setattr__(self, "max_tilt", require_in_range(owner, "max_tilt", self.max_tilt, 0.0, math.pi, unit=" [rad]"))
+        if self.block_dim is not None:
+            object.__setattr__(self, "block_dim", require_int_in_range(owner, "block_dim", self.block_dim, 1, 1024))
+
+    @property
+    def substep_dt(self) -> float:
+        return self.dt / self.substeps
+
+
+class Simulator:
+    """An :class:`Ocean` and a :class:`Fleet` on one device, advanced by :meth:`step`.
+
+    Each substep: evaluate the ocean at the current time, sample it at every hull vertex, compute
+    each boat's water wrench (one block per boat), integrate the rigid bodies, advance the time. On
+    CUDA the whole step is captured once as a graph and replayed: no allocation, no host
+    synchronisation. Change the fleet's state and external wrenches between steps through its arrays
+    or torch views; they are read on the device.
+    """
+
+    def __init__(self, ocean: Ocean, fleet: Fleet, config: SimulatorConfig | None = None):
+        self.config = config if config is not None else SimulatorConfig()
+        if not isinstance(ocean, Ocean) or not isinstance(fleet, Fleet):
+            raise ValueError("Simulator needs an ocean_warp.Ocean and an ocean_warp.Fleet")
+        if ocean.device != fleet.device:
+            raise ValueError(f"Simulator: the ocean is on {ocean.device} but the fleet on {fleet.device}")
+        hydro = self.config.hydrodynamics
+        if not math.isclose(hydro.gravity, ocean.config.gravity, rel_tol=1e-9):
+            raise ValueError(f"Simulator: HydrodynamicsConfig.gravity {hydro.gravity} differs from "
+                             f"OceanConfig.gravity {ocean.config.gravity}; the waves and the boats must share g")
+        self.ocean = ocean
+        self.fleet = fleet
+        self.device = fleet.device
+        self.block_dim = self.config.block_dim or (128 if self.device.is_cuda else 1)
+        vertex_rounds = -(-fleet.max_vertex_count // self.block_dim)
+        self._hull_wrenches = hull_wrenches_kernel(vertex_rounds, self.block_dim)
+        self.water = _water_model(hydro, self.config.substep_dt)
+        self.bounds = SafetyBounds()
+        self.bounds.max_altitude = self.config.max_altitude
+        self.bounds.max_depth = self.config.max_depth
+        self.bounds.min_uprightness = math.cos(self.config.max_tilt)
+        self._graph = None
+
+    @property
+    def time(self) -> float:
+        """Simulated time [s] (reads the device; do not call inside a capture)."""
+        return float(self.ocean.time.numpy()[0])
+
+    def compute_hull_wrenches(self) -> None:
+        """Sample the ocean at every hull vertex and sum the water's wrench on each boat into
+        ``fleet.hydro_wrench``, for the fleet's current state and the ocean's current fields."""
+        fleet = self.fleet
+        wp.launch_tiled(self._hull_wrenches, dim=[fleet.count], block_dim=self.block_dim, device=self.device,
+                        inputs=[self.ocean.surface, fleet.meshes, self.water, fleet.hull_type, fleet.triangle_offset,
+                                fleet.position, fleet.orientation, fleet.velocity, fleet.swept_rate],
+                        outputs=[fleet.water_velocity, fleet.hydro_wrench])
+
+    def integrate(self) -> None:
+        """One substep of the rigid bodies with the wrenches computed last."""
+        fleet = self.fleet
+        wp.launch(integrate_boats, dim=fleet.count, device=self.device,
+                  inputs=[fleet.body, fleet.hull_type, self.config.hydrodynamics.gravity, self.config.substep_dt,
+                          self.bounds, fleet.hydro_wrench, fleet.wrench_world, fleet.wrench_body, fleet.water_velocity],
+                  outputs=[fleet.position, fleet.orientation, fleet.velocity, fleet.status])
+
+    def substep(self, *, update_ocean: bool = True) -> None:
+        """Ocean (optionally), water forces, integration, time += dt / substeps."""
+        if update_ocean:
+            self.ocean.update()
+        self.compute_hull_wrenches()
+        self.integrate()
+        wp.launch(advance_time, dim=1, inputs=[self.ocean.time, wp.float64(self.config.substep_dt)], device=self.device)
+
+    def _launch_step(self) -> None:
+        for index in range(self.config.substeps):
+            self.substep(update_ocean=self.config.ocean_every_substep or index == 0)
+
+    def step(self) -> None:
+        """Advance ``config.dt`` seconds (asynchronous on CUDA, ordered after torch's pending work on
+        the fleet's tensors and before torch's next)."""
+        with ordered_with_torch(self.device):
+            if not (self.device.is_cuda and self.config.capture_graph):
+                self._launch_step()
+                return
+            if self._graph is None:
+                with wp.ScopedCapture(device=self.device) as capture:
+                    self._launch_step()
+                self._graph = capture.graph
+            wp.capture_launch(self._graph)
+
+
+def _water_model(config: HydrodynamicsConfig, substep: float) -> WaterModel:
+    water = WaterModel()
+    water.density = config.water_density
+    water.gravity = config.gravity
+    water.kinematic_viscosity = config.kinematic_viscosity
+    water.inverse_reference_speed = 1.0 / config.reference_speed
+    water.pressure_drag_linear = config.pressure_drag_linear
+    water.pressure_drag_quadratic = config.pressure_drag_quadratic
+    water.pressure_drag_falloff = config.pressure_drag_falloff
+    water.suction_linear = config.suction_linear
+    water.suction_quadratic = config.suction_quadratic
+    water.suction_falloff = config.suction_falloff
+    water.skin_friction = int(config.skin_friction)
+    water.slamming = int(config.slamming)
+    water.slamming_power = config.slamming_power
+    water.inverse_slamming_max_acceleration = 1.0 / config.slamming_max_acceleration
+    water.substep = substep
+    return water

@@ -1,0 +1,57 @@
+"""The Warp hull-force kernels against the independent numpy implementation in reference_hull.py, on
+random hulls, poses, velocities, coefficients and choppy seas."""
+
+import dataclasses
+import math
+
+import numpy as np
+
+import ocean_warp as ow
+from tests import reference_hull
+from tests.hull_setups import random_rotations, rotation_matrix
+
+
+def test_hull_wrenches_match_numpy_reference(device, rng):
+    hulls = [ow.Hull.box(float(rng.uniform(1, 4)), float(rng.uniform(0.5, 2)), float(rng.uniform(0.4, 1.2)),
+                         subdivisions=1),
+             ow.Hull.ellipsoid(*rng.uniform(0.3, 1.5, size=3), subdivisions=2)]
+    types = [ow.BoatType.floating_solid(h, draft_fraction=float(rng.uniform(0.2, 0.8))) for h in hulls]
+    count = 10
+    fleet = ow.Fleet(types, types=rng.integers(0, 2, size=count), device=device)
+    ocean = ow.Ocean(ow.OceanConfig(tile_size=float(rng.uniform(60, 150)), resolution=64,
+                                    significant_wave_height=float(rng.uniform(0.5, 2.0)),
+                                    peak_period=float(rng.uniform(4, 8)), choppiness=float(rng.uniform(0, 0.8)),
+                                    direction=float(rng.uniform(-np.pi, np.pi)), seed=int(rng.integers(2**31))),
+                     device=device)
+    ocean.update(float(rng.uniform(0, 500)))
+    hydro = dataclasses.replace(
+        ow.HydrodynamicsConfig(), pressure_drag_linear=float(rng.uniform(0, 300)),
+        pressure_drag_quadratic=float(rng.uniform(0, 900)), suction_linear=float(rng.uniform(0, 300)),
+        suction_quadratic=float(rng.uniform(0, 900)), pressure_drag_falloff=float(rng.uniform(0.2, 2)),
+        suction_falloff=float(rng.uniform(0.2, 2)))
+    positions = np.column_stack([rng.uniform(-200, 200, size=(count, 2)), rng.uniform(-0.8, 0.4, size=count)])
+    orientations = random_rotations(rng, count, max_angle=math.pi)
+    velocities = np.concatenate([rng.uniform(-3, 3, size=(count, 3)), rng.uniform(-1, 1, size=(count, 3))], axis=1)
+    fleet.reset(position=positions, orientation=orientations, velocity=velocities)
+    simulator = ow.Simulator(ocean, fleet, ow.SimulatorConfig(hydrodynamics=hydro))
+    simulator.compute_hull_wrenches()
+    wrenches = fleet.hydro_wrench.numpy()
+
+    type_of_boat = fleet.hull_type.numpy()
+    submerged_boats = 0
+    for boat in range(count):
+        hull = hulls[type_of_boat[boat]]
+        rotation = rotation_matrix(orientations[boat])
+        world = positions[boat] + hull.vertices @ rotation.T
+        sample = ocean.sample(world[:, :2])
+        depth = sample.height.astype(np.float64) - world[:, 2]
+        flow = sample.velocity.astype(np.float64) @ rotation  # world -> body
+        boat_flow = ocean.sample(positions[boat, :2]).velocity[0].astype(np.float64) @ rotation
+        expected = reference_hull.hull_wrench(hull.vertices, hull.triangles, depth, flow, velocities[boat], hydro,
+                                              boat_flow)
+        submerged_boats += bool((depth > 0).any() and (depth <= 0).any())
+        force_scale = hydro.water_density * hydro.gravity * hull.volume
+        moment_scale = force_scale * np.ptp(hull.vertices, axis=0).max()
+        np.testing.assert_allclose(wrenches[boat, :3], expected[:3], rtol=0, atol=2e-4 * force_scale)
+        np.testing.assert_allclose(wrenches[boat, 3:], expected[3:], rtol=0, atol=2e-4 * moment_scale)
+    assert submerged_boats >= 3, "too few boats cut the waterline to test the clipping"
