@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import logging
 import os
 import sys
@@ -30,9 +29,9 @@ from benchmarks.timing import (  # noqa: E402
     median_seconds_host,
     median_seconds_torch_graph,
     median_seconds_warp_graph,
+    write_results_json,
 )
 import ocean_warp as ow  # noqa: E402
-from ocean_warp.atomic_files import atomic_output  # noqa: E402
 
 
 def boat_hull(target_triangles: int) -> ow.Hull:
@@ -166,9 +165,7 @@ def main(argv=None) -> None:
             rows.append(row)
             print_row(row)
     if args.json:
-        with atomic_output(args.json) as temporary, open(temporary, "w") as handle:
-            json.dump({"device": device_description(device), "date": str(datetime.date.today()),
-                       "choppiness": args.choppiness, "rows": rows}, handle, indent=2)
+        write_results_json(args.json, device, choppiness=args.choppiness, rows=rows)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import logging
 import os
 import sys
@@ -28,9 +27,9 @@ from benchmarks.timing import (  # noqa: E402
     median_seconds_host,
     median_seconds_torch_graph,
     median_seconds_warp_graph,
+    write_results_json,
 )
 from ocean_warp import FftPlan, Ocean, OceanConfig  # noqa: E402
-from ocean_warp.atomic_files import atomic_output  # noqa: E402
 
 
 def sea(n: int) -> OceanConfig:
@@ -165,13 +164,11 @@ def main(argv=None) -> None:
     if device.is_cpu:
         header += " numpy [us] | Warp/numpy |"
     print(header + " Warp vs torch |")
-    results = {"device": device_description(device), "date": str(datetime.date.today()),
-               "sizes": benchmark_sizes(device, args.sizes)}
+    results = {"sizes": benchmark_sizes(device, args.sizes)}
     if args.sweep:
         results["sweep"] = [row for n in args.sweep for row in sweep_plans(device, n)]
     if args.json:
-        with atomic_output(args.json) as temporary, open(temporary, "w") as handle:
-            json.dump(results, handle, indent=2)
+        write_results_json(args.json, device, **results)
 
 
 if __name__ == "__main__":

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # GPU session: the CUDA half of the test suite, then the benchmarks, logs and JSON into $OUT (or ./out/gpu).
 # Usage on a CUDA machine with the project installed:  bash benchmarks/run_gpu.sh [stage ...]
-# Stages: tests, ocean, sweep, passes, ocean_cpu, hull, hull_flat, hull_blocks (default: all).
+# Stages: tests, ocean, sweep, passes, ocean_cpu, hull, hull_flat, hull_blocks, eboat, breakdown, polar (default: all).
 set -uo pipefail
 out=${OUT:-out/gpu}
 mkdir -p "$out"
-stages=${*:-tests ocean sweep passes ocean_cpu hull hull_flat hull_blocks}
+stages=${*:-tests ocean sweep passes ocean_cpu hull hull_flat hull_blocks eboat breakdown polar}
 export PYTHONUNBUFFERED=1
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/gpu.txt"
 for stage in $stages; do
@@ -19,6 +19,11 @@ for stage in $stages; do
     hull) timeout 420 python benchmarks/bench_hull.py --device cuda:0 --json "$out/hull.json" 2>&1 | tee "$out/hull.txt" ;;
     hull_flat) timeout 200 python benchmarks/bench_hull.py --device cuda:0 --boats 4096 16384 --triangles 2000 --choppiness 0 --json "$out/hull_flat.json" 2>&1 | tee "$out/hull_flat.txt" ;;
     hull_blocks) timeout 200 python benchmarks/bench_hull.py --device cuda:0 --boats 4096 --triangles 500 2000 8000 --block-dim 32 64 128 256 2>&1 | tee "$out/hull_blocks.txt" ;;
+    eboat) timeout 400 python benchmarks/bench_eboat.py --device cuda:0 --json "$out/eboat.json" 2>&1 | tee "$out/eboat.txt"
+           timeout 300 python benchmarks/bench_eboat.py --device cuda:0 --choppiness 0 --json "$out/eboat_flat.json" 2>&1 | tee "$out/eboat_flat.txt" ;;
+    breakdown) timeout 300 python benchmarks/eboat_breakdown.py --device cuda:0 --choppiness 0 2>&1 | tee "$out/breakdown.txt"
+               timeout 300 python benchmarks/eboat_breakdown.py --device cuda:0 --choppiness 0.5 2>&1 | tee -a "$out/breakdown.txt" ;;
+    polar) timeout 300 python -m ocean_warp.examples.polar --device cuda:0 --angle-step 10 --sheet-step 10 --out "$out/polar" 2>&1 | tee "$out/polar.txt" ;;
     *) echo "unknown stage $stage" ;;
   esac
   echo "stage $stage took $(( $(date +%s) - start )) s"

@@ -1,13 +1,17 @@
-"""Timing helpers shared by the benchmarks: medians of repeated batches, device events on CUDA."""
+"""Helpers shared by the benchmarks: medians of repeated batches, device events on CUDA, results as JSON."""
 
 from __future__ import annotations
 
+import datetime
+import json
 import platform
 import statistics
 import time
 from collections.abc import Callable
 
 import warp as wp
+
+from ocean_warp.atomic_files import atomic_output
 
 
 def median_seconds_host(fn: Callable[[], None], *, batches: int = 7, per_batch: int = 3, sync=None) -> float:
@@ -75,3 +79,10 @@ def device_description(device) -> str:
     except OSError:
         pass
     return f"CPU: {cpu}"
+
+
+def write_results_json(path: str, device, **results) -> None:
+    """Write ``results`` with the device's description and today's date to ``path``, atomically."""
+    record = {"device": device_description(device), "date": str(datetime.date.today()), **results}
+    with atomic_output(path) as temporary, open(temporary, "w") as handle:
+        json.dump(record, handle, indent=2)

@@ -32,6 +32,7 @@ __all__ = [
     "sample_vertex_water",
     "origin_water_velocity",
     "hull_wrenches_kernel",
+    "sample_origin_water",
     "MAX_HULL_VERTICES",
 ]
 
@@ -330,22 +331,35 @@ def origin_water_velocity(surface: OceanSurface, origin: wp.vec3, rotation: wp.q
     return wp.quat_rotate_inv(rotation, wp.vec3(water[1], water[2], water[3]))
 
 
+@wp.kernel(enable_backward=False)
+def sample_origin_water(
+    surface: OceanSurface,
+    position: wp.array(dtype=wp.vec3),
+    orientation: wp.array(dtype=wp.quat),
+    boat_water_velocity: wp.array(dtype=wp.vec3),
+):
+    """Water velocity at each boat's origin, body frame [m/s] (one thread per boat)."""
+    boat = wp.tid()
+    boat_water_velocity[boat] = origin_water_velocity(surface, position[boat], orientation[boat])
+
+
 # The per-vertex water state of one hull lives in shared memory: 16 bytes a vertex, within the
 # 227 KB of an H100 block and the 256 KB CPU arena, with room to spare.
 MAX_HULL_VERTICES = 12288
 
 
 @functools.cache
-def hull_wrenches_kernel(vertex_rounds: int, block_dim: int):
+def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int = 128):
     """Kernel: the water's wrench on each boat, one block of ``block_dim`` threads per boat, launched
     with ``wp.launch_tiled`` over dim [boats]. ``vertex_rounds`` rounds of ``block_dim`` vertex slots
     must cover the largest hull (on the CPU a block has one thread: rounds = most vertices).
 
-    Compiled with fast math and at most 128 registers a thread: on an H100 (4096 boats x 2112
-    triangles) that took the pass from 323 to 214 us with the same results to 1e-7."""
+    Compiled with fast math and at most ``max_registers`` registers a thread: on an H100 (4096 boats
+    x 2112 triangles) that took the pass from 323 to 214 us with the same results to 1e-7."""
     slots = vertex_rounds * block_dim
 
-    @wp.kernel(enable_backward=False, module="unique", module_options={"fast_math": True}, cuda_max_registers=128)
+    @wp.kernel(enable_backward=False, module="unique", module_options={"fast_math": True},
+               cuda_max_registers=max_registers)
     def hull_wrenches(
         surface: OceanSurface,
         meshes: HullMeshes,

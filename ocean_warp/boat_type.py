@@ -63,6 +63,8 @@ class BoatType:
     """Diagonal linear damping on the velocity relative to the water [N s/m, N m s/rad]."""
     quadratic_damping: object = (0.0,) * 6
     """Diagonal quadratic damping, force -d |nu_r| nu_r [N s^2/m^2, N m s^2/rad^2]."""
+    astern_surge_factor: float = 1.0
+    """Surge damping (linear and quadratic) is this many times larger when moving astern (E-Boat: 1.3)."""
     name: str = ""
 
     def __post_init__(self):
@@ -89,6 +91,10 @@ class BoatType:
         object.__setattr__(self, "added_mass", _six_by_six(owner, "added_mass", self.added_mass))
         object.__setattr__(self, "linear_damping", _six_vector(owner, "linear_damping", self.linear_damping))
         object.__setattr__(self, "quadratic_damping", _six_vector(owner, "quadratic_damping", self.quadratic_damping))
+        factor = self.astern_surge_factor
+        if isinstance(factor, bool) or not isinstance(factor, (int, float)) or not np.isfinite(factor) or factor <= 0:
+            raise ValueError(f"{owner}.astern_surge_factor must be a finite number > 0, got {factor!r}")
+        object.__setattr__(self, "astern_surge_factor", float(factor))
         if np.linalg.eigvalsh(self.mass_matrix).min() <= 0:
             raise ValueError(f"{owner}: the mass matrix M_RB + M_A is not positive definite; check added_mass")
         if not self.name:

@@ -8,6 +8,7 @@ import sys
 JOBS = {
     "ocean": ("ocean_warp.examples.ocean", "a JONSWAP sea: height field and spectrum PNGs"),
     "drop-hulls": ("ocean_warp.examples.drop_hulls", "hulls of several shapes dropped into waves: heave and roll"),
+    "polar": ("ocean_warp.examples.polar", "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
 }
 
 

@@ -105,6 +105,8 @@ class Fleet:
         """(N,) external force at the centre of mass [N] and couple [N m], body frame."""
         self.hydro_wrench = wp.zeros(n, dtype=vec6, device=device)
         """(N,) the water's force [N] and moment about the origin [N m], body frame (computed)."""
+        self.model_wrench = wp.zeros(n, dtype=vec6, device=device)
+        """(N,) sum of the simulator's force models (foils, propellers, ...), body frame, about the origin."""
         self.water_velocity = wp.zeros(n, dtype=wp.vec3, device=device)
         """(N,) orbital velocity of the water at each boat's origin, body frame [m/s] (computed)."""
         self.swept_rate = wp.full(max(self.total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device)
@@ -169,9 +171,9 @@ class Fleet:
     # --- host copies, for inspection and tests --------------------------------------------------------
     def numpy(self) -> dict[str, np.ndarray]:
         """Host copies of position, orientation, velocity, status and hydro_wrench (after torch's
-        pending writes to them)."""
+        pending writes to them). Copies even on the CPU, where ``wp.array.numpy()`` is a view."""
         with ordered_with_torch(self.device):
-            return {name: getattr(self, name).numpy() for name in
+            return {name: getattr(self, name).numpy().copy() for name in
                     ("position", "orientation", "velocity", "status", "hydro_wrench")}
 
 
@@ -245,5 +247,6 @@ def _body_parameters(boat_types: list[BoatType], device) -> BodyParameters:
     body.mass_matrix = wp.array(np.array([t.mass_matrix for t in boat_types]), dtype=mat66, device=device)
     body.linear_damping = wp.array(np.array([t.linear_damping for t in boat_types]), dtype=vec6, device=device)
     body.quadratic_damping = wp.array(np.array([t.quadratic_damping for t in boat_types]), dtype=vec6, device=device)
+    body.astern_surge_factor = wp.array([t.astern_surge_factor for t in boat_types], dtype=float, device=device)
     return body
 

@@ -9,7 +9,7 @@ import warp as wp
 
 from .fleet import Fleet
 from .hydrodynamics_config import HydrodynamicsConfig
-from .kernels.hull_forces import WaterModel, hull_wrenches_kernel
+from .kernels.hull_forces import WaterModel, hull_wrenches_kernel, sample_origin_water
 from .kernels.rigid_body import SafetyBounds, advance_time, integrate_boats
 from .ocean import Ocean
 from .torch_streams import ordered_with_torch
@@ -30,6 +30,9 @@ class SimulatorConfig:
     """Water and the per-triangle force model."""
     ocean_every_substep: bool = True
     """Re-evaluate the ocean every substep (True) or once per step, at its start (False, cheaper)."""
+    hull_pressure: bool = True
+    """Compute the per-triangle water forces; False leaves buoyancy to a force model (e.g. the E-Boat's
+    original four-point buoyancy)."""
     max_altitude: float = 20.0
     """A boat whose origin rises this far above still water is flagged FLYING [m]."""
     max_depth: float = 50.0
@@ -62,13 +65,18 @@ class Simulator:
     """An :class:`Ocean` and a :class:`Fleet` on one device, advanced by :meth:`step`.
 
     Each substep: evaluate the ocean at the current time, sample it at every hull vertex, compute
-    each boat's water wrench (one block per boat), integrate the rigid bodies, advance the time. On
-    CUDA the whole step is captured once as a graph and replayed: no allocation, no host
-    synchronisation. Change the fleet's state and external wrenches between steps through its arrays
-    or torch views; they are read on the device.
+    each boat's water wrench (one block per boat), run the force models, integrate the rigid bodies,
+    advance the time; after the last substep, the models' per-step work (sensors). On CUDA the whole
+    step is captured once as a graph and replayed: no allocation, no host synchronisation. Change the
+    fleet's state and external wrenches between steps through its arrays or torch views; they are
+    read on the device.
+
+    ``models`` are objects with ``substep(simulator)``, which launches kernels that add body-frame
+    wrenches about the origin to ``fleet.model_wrench`` (zeroed before them every substep), and
+    optionally ``step(simulator)``, run once per step after the substeps. They launch in list order.
     """
 
-    def __init__(self, ocean: Ocean, fleet: Fleet, config: SimulatorConfig | None = None):
+    def __init__(self, ocean: Ocean, fleet: Fleet, config: SimulatorConfig | None = None, *, models=()):
         self.config = config if config is not None else SimulatorConfig()
         if not isinstance(ocean, Ocean) or not isinstance(fleet, Fleet):
             raise ValueError("Simulator needs an ocean_warp.Ocean and an ocean_warp.Fleet")
@@ -89,6 +97,10 @@ class Simulator:
         self.bounds.max_altitude = self.config.max_altitude
         self.bounds.max_depth = self.config.max_depth
         self.bounds.min_uprightness = math.cos(self.config.max_tilt)
+        self.models = list(models)
+        for model in self.models:
+            if not callable(getattr(model, "substep", None)):
+                raise ValueError(f"Simulator: model {model!r} has no substep(simulator) method")
         self._graph = None
 
     @property
@@ -110,20 +122,36 @@ class Simulator:
         fleet = self.fleet
         wp.launch(integrate_boats, dim=fleet.count, device=self.device,
                   inputs=[fleet.body, fleet.hull_type, self.config.hydrodynamics.gravity, self.config.substep_dt,
-                          self.bounds, fleet.hydro_wrench, fleet.wrench_world, fleet.wrench_body, fleet.water_velocity],
+                          self.bounds, fleet.hydro_wrench, fleet.model_wrench, fleet.wrench_world, fleet.wrench_body,
+                          fleet.water_velocity],
                   outputs=[fleet.position, fleet.orientation, fleet.velocity, fleet.status])
 
     def substep(self, *, update_ocean: bool = True) -> None:
-        """Ocean (optionally), water forces, integration, time += dt / substeps."""
+        """Ocean (optionally), water forces, force models, integration, time += dt / substeps."""
         if update_ocean:
             self.ocean.update()
-        self.compute_hull_wrenches()
+        if self.config.hull_pressure:
+            self.compute_hull_wrenches()
+        else:
+            self._sample_origin_water()
+        self.fleet.model_wrench.zero_()
+        for model in self.models:
+            model.substep(self)
         self.integrate()
         wp.launch(advance_time, dim=1, inputs=[self.ocean.time, wp.float64(self.config.substep_dt)], device=self.device)
+
+    def _sample_origin_water(self) -> None:
+        """Without the hull pass, still sample the water velocity at each boat's origin."""
+        fleet = self.fleet
+        wp.launch(sample_origin_water, dim=fleet.count, device=self.device,
+                  inputs=[self.ocean.surface, fleet.position, fleet.orientation], outputs=[fleet.water_velocity])
 
     def _launch_step(self) -> None:
         for index in range(self.config.substeps):
             self.substep(update_ocean=self.config.ocean_every_substep or index == 0)
+        for model in self.models:
+            if callable(getattr(model, "step", None)):
+                model.step(self)
 
     def step(self) -> None:
         """Advance ``config.dt`` seconds (asynchronous on CUDA, ordered after torch's pending work on

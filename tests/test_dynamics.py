@@ -130,9 +130,8 @@ def test_torque_free_body_conserves_kirchhoff_energy(device, rng):
     states = free_body_run(device, boat, nu0, 2000, dt=0.0025)
     matrix = boat.mass_matrix
     energy = np.array([0.5 * s["velocity"][0] @ matrix @ s["velocity"][0] for s in states])
-    # The linearly implicit step may lose a little energy, never gain it.
-    assert energy.max() <= energy[0] * (1 + 1e-4)
-    assert energy[-1] > 0.99 * energy[0]
+    # The velocity terms are integrated at the midpoint: the invariant holds to the step's accuracy.
+    assert np.abs(energy / energy[0] - 1.0).max() < 1e-3
     assert np.abs(states[-1]["velocity"][0] - nu0).max() > 0.05, "the motion should not be trivial"
 
 
@@ -223,3 +222,19 @@ def test_velocity_terms_and_their_jacobian_match_numpy(device, rng):
             numeric[:, j] = (numpy_velocity_terms(nu[i] + step, nu[i] + step - shift, boat)
                              - numpy_velocity_terms(nu[i] - step, nu[i] - step - shift, boat)) / 2e-6
         np.testing.assert_allclose(jacobians.numpy()[i], numeric, rtol=1e-4, atol=1e-2)
+
+
+def test_surge_damping_is_stronger_astern(device, rng):
+    """The original twin's damping is 1.3 times larger going astern: decelerations ahead and astern
+    from the same speed differ by exactly that factor."""
+    boat = ow.BoatType(hull=ow.Hull.box(2.0, 1.0, 0.5), mass=100.0, linear_damping=[rng.uniform(5, 50), 0, 0, 0, 0, 0],
+                       quadratic_damping=[rng.uniform(5, 50), 0, 0, 0, 0, 0], astern_surge_factor=1.3)
+    fleet = ow.Fleet(boat, 2, device=device)
+    speed = rng.uniform(0.5, 2.0)
+    fleet.reset(position=[[0.0, 0.0, 100.0], [0.0, 10.0, 100.0]], velocity=[[speed, 0, 0, 0, 0, 0], [-speed, 0, 0, 0, 0, 0]])
+    fleet.tensors.wrench_world[:] = fleet.tensors.wrench_world.new_tensor([0, 0, boat.mass * G, 0, 0, 0])
+    simulator = ow.Simulator(calm_ocean(device), fleet, ow.SimulatorConfig(dt=1e-3, substeps=1, max_altitude=1e4,
+                                                                            hydrodynamics=STILL))
+    simulator.step()
+    change = fleet.numpy()["velocity"][:, 0] - [speed, -speed]
+    assert -change[1] / change[0] == pytest.approx(1.3, rel=1e-3)

@@ -8,6 +8,7 @@ import warp as wp
 
 import ocean_warp as ow
 from ocean_warp.kernels.hull_forces import WaterModel, _submerged_area, triangle_wrench, vec6
+from ocean_warp.kernels.point_buoyancy import circle_segment_area
 from tests.hull_setups import calm_ocean, quaternion_about, random_rotations, rotation_matrix
 
 RHO, G = 1025.0, 9.81
@@ -178,3 +179,24 @@ def test_submerged_area_matches_polygon_clipping(device, rng):
         area = sum(0.5 * np.linalg.norm(np.cross(points[k] - points[0], points[k + 1] - points[0]))
                    for k in range(1, len(points) - 1))
         assert out.numpy()[i] == pytest.approx(area, rel=1e-4, abs=1e-6)
+
+
+@wp.kernel
+def _segment_areas(depths: wp.array(dtype=float), radius: float, out: wp.array(dtype=float)):
+    i = wp.tid()
+    out[i] = circle_segment_area(radius, depths[i])
+
+
+def test_circle_segment_area_of_the_point_buoyancy(device, rng):
+    radius = float(rng.uniform(0.1, 1.0))
+    depths = np.concatenate([rng.uniform(0, radius, 20), [0.0, radius, -0.1, 2 * radius]])
+    out = wp.zeros(len(depths), dtype=float, device=device)
+    wp.launch(_segment_areas, dim=len(depths), device=device,
+              inputs=[wp.array(depths, dtype=float, device=device), radius], outputs=[out])
+    # The part of the circle within `depth` of its top, integrated numerically (clamped to [0, R]).
+    z = np.linspace(-radius, radius, 200001)
+    width = 2 * np.sqrt(np.clip(radius**2 - z**2, 0, None))
+    for depth, area in zip(depths, out.numpy()):
+        h = min(max(depth, 0.0), radius)
+        expected = np.trapezoid(np.where(z >= radius - h, width, 0.0), z)
+        assert area == pytest.approx(expected, rel=1e-3, abs=1e-6)

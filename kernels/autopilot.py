@@ -1,0 +1,51 @@
+"""A heading-holding autopilot: the rudder command from the heading error and the yaw rate."""
+
+from __future__ import annotations
+
+import math
+
+import warp as wp
+
+from .hull_forces import vec6
+
+__all__ = ["HeadingGains", "hold_heading"]
+
+PI = wp.constant(math.pi)
+
+
+@wp.struct
+class HeadingGains:
+    proportional: float
+    """[rad of rudder per rad of heading error]"""
+    integral: float
+    """[rad of rudder per rad s of accumulated error]"""
+    damping: float
+    """[rad of rudder per rad/s of yaw rate]"""
+    rudder_limit: float
+    """[rad]"""
+    dt: float
+    """Time between calls [s]."""
+
+
+@wp.kernel(enable_backward=False)
+def hold_heading(
+    target_heading: wp.array(dtype=float),
+    gains: HeadingGains,
+    orientation: wp.array(dtype=wp.quat),
+    velocity: wp.array(dtype=vec6),
+    integral: wp.array(dtype=float),
+    rudder_command: wp.array(dtype=float),
+):
+    """A PID rudder: clamp(P e + I sum(e dt) - D yaw rate, +-limit) with e = wrap(target - heading) [rad];
+    a positive rudder turns to port, towards a larger heading (yaw from +x, counter-clockwise). The
+    integral stops growing while the rudder is at its limit (anti-windup)."""
+    boat = wp.tid()
+    q = orientation[boat]
+    heading = wp.atan2(2.0 * (q[3] * q[2] + q[0] * q[1]), 1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]))
+    error = target_heading[boat] - heading
+    error = error - 2.0 * PI * wp.floor((error + PI) / (2.0 * PI))
+    accumulated = integral[boat] + error * gains.dt
+    command = gains.proportional * error + gains.integral * accumulated - gains.damping * velocity[boat][5]
+    if wp.abs(command) < gains.rudder_limit:
+        integral[boat] = accumulated
+    rudder_command[boat] = wp.clamp(command, -gains.rudder_limit, gains.rudder_limit)

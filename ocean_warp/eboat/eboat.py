@@ -1,0 +1,202 @@
+"""The E-Boat preset: hull, mass properties, rig, foil tables and hydrodynamics from the data sheet."""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import importlib.resources
+
+import numpy as np
+import warp as wp
+
+from ..boat_type import BoatType
+from ..hydrodynamics_config import HydrodynamicsConfig
+from ..kernels.foils import FoilTables
+from ..kernels.point_buoyancy import PointBuoyancy
+from ..kernels.sailing_rig import RigParameters
+from ..validation import require_choice, require_positive
+from .hull_shape import HullShape, eboat_hull
+from .mass_properties import MassProperties, eboat_mass_properties
+from .sheet import ACTUATORS, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, Version
+
+__all__ = ["Hydrostatics", "EBoatConfig", "EBoat", "load_foil_table"]
+
+MAST_LENGTH = 3.55
+"""Sheet, mast row [m]."""
+WINDAGE_AREA = 0.5
+"""Drag area C_D A of the mast, rigging and topsides [m^2] (assumed, not on the sheet): the 3.55 x 0.1 m
+mast as a cylinder (C_D about 1.2, 0.43 m^2) and a little of the hull above water. The original twin had
+none; without it the tabulated sail points closer than 20 degrees to the wind."""
+WINDAGE_HEIGHT = 1.2
+"""Height of the windage's centre above the waterline [m] (assumed)."""
+
+
+class Hydrostatics(str, enum.Enum):
+    """How the water holds the boat up."""
+
+    MESH = "mesh"
+    """Per-triangle pressure on the hull mesh, with drag and friction (ocean_warp's model)."""
+    POINTS = "points"
+    """The original twin's four-point buoyancy with VRX-style damping (to compare with Gazebo)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class EBoatConfig:
+    """Which E-Boat to build."""
+
+    version: Version | str = Version.C
+    """"V-A", "V-B" or "V-C" (default): the sheet's snapshots of the original model, where they differ."""
+    hydrostatics: Hydrostatics | str = Hydrostatics.MESH
+    """"mesh" (default) or "points" (the original four-point buoyancy and VRX damping)."""
+    water_density: float = 1025.0
+    """[kg/m^3]; sea water. The original used 997: set it to compare with Gazebo."""
+    original_tuning: bool = False
+    """Apply V-C's tuning hacks (sheet: sail lift held above 100 deg, foil lift zero above 90 deg,
+    rudder force x 0.3, keel minus 0.6 of the sail's side force, sail force x 0.1 outside 5-160 deg).
+    They are not physics: off by default."""
+    hull_shape: HullShape = dataclasses.field(default_factory=HullShape)
+    """Dimensions of the procedural canoe body."""
+
+    def __post_init__(self):
+        object.__setattr__(self, "version", require_choice("EBoatConfig", "version", self.version, Version))
+        object.__setattr__(self, "hydrostatics", require_choice("EBoatConfig", "hydrostatics", self.hydrostatics,
+                                                                Hydrostatics))
+        object.__setattr__(self, "water_density", require_positive("EBoatConfig", "water_density",
+                                                                   self.water_density, unit=" [kg/m^3]"))
+        if not isinstance(self.original_tuning, bool):
+            raise ValueError(f"EBoatConfig.original_tuning must be True or False, got {self.original_tuning!r}")
+
+
+def load_foil_table() -> np.ndarray:
+    """(181, 5) the sheet's foil_coefficients.csv: alpha [deg], sail C_L, sail C_D, foil C_L, foil C_D."""
+    with importlib.resources.files("ocean_warp.eboat").joinpath("foil_coefficients.csv").open() as handle:
+        table = np.loadtxt(handle, delimiter=",", skiprows=1)
+    if table.shape != (181, 5) or not np.array_equal(table[:, 0], np.arange(181)):
+        raise ValueError(f"foil_coefficients.csv must hold 181 rows of 0..180 deg and 4 coefficients, got {table.shape}")
+    return table
+
+
+# Drag of the mesh model tuned for this hull (it has no wave-making resistance of its own): with the
+# sheet's full thrust, 120.1 N, the boat reaches 1.71 m/s, about its hull speed 1.34 sqrt(LWL in ft) kn
+# = 1.73 m/s for its 1.91 m waterline at rest (measured on the CPU, 2026-11-21; see the tests).
+EBOAT_HYDRODYNAMICS = dict(pressure_drag_linear=80.0, pressure_drag_quadratic=400.0,
+                           suction_linear=40.0, suction_quadratic=200.0)
+
+
+class EBoat:
+    """Everything about the E-Boat that does not change while it sails: its :class:`BoatType` (hull
+    mesh, composite mass properties, added mass, damping), its rig (sail, keel, rudder, propeller,
+    actuators) and foil tables, and the water model it sails in."""
+
+    def __init__(self, config: EBoatConfig | None = None):
+        self.config = config if config is not None else EBoatConfig()
+        version = self.config.version
+        self.mass_properties: MassProperties = eboat_mass_properties(version)
+        self.hull = eboat_hull(self.config.hull_shape)
+        vrx = VRX[version]
+        if self.config.hydrostatics is Hydrostatics.POINTS:
+            damping = dict(linear_damping=vrx.linear_damping, quadratic_damping=vrx.quadratic_damping,
+                           astern_surge_factor=vrx.astern_surge_factor)
+        else:
+            # The mesh model damps surge, sway and heave itself; the sheet's roll, pitch and yaw terms stand
+            # in for the appendages' and rig's damping that the mesh does not see.
+            damping = dict(linear_damping=(0.0, 0.0, 0.0) + tuple(vrx.linear_damping[3:]))
+        mp = self.mass_properties
+        self.boat_type = BoatType(hull=self.hull, mass=mp.mass, center_of_mass=tuple(mp.center_of_mass),
+                                  inertia=mp.inertia, added_mass=vrx.added_mass, name=f"eboat {version.value}",
+                                  **damping)
+        self.hydrodynamics = HydrodynamicsConfig(water_density=self.config.water_density, **EBOAT_HYDRODYNAMICS)
+        self.foil_table = load_foil_table()
+        self.masthead = np.array([MAST_STEP[0], 0.0, MAST_STEP[2] + MAST_LENGTH])
+        """Top of the mast in the body frame [m]: vane and anemometer."""
+        self.rig_figures = FOILS[version]
+        self.vrx = vrx
+
+    @property
+    def boom_inertia(self) -> float:
+        """Boom and sail about the mast [kg m^2]: the boom as a 1.8 m rod from the mast (sheet), the sail
+        as a triangle on it (foot 1.8 m, centroid 0.6 m aft; assumed)."""
+        boom = next(link for link in LINKS if link.name == "boom").mass
+        sail = next(link for link in LINKS if link.name == "sail").mass
+        return boom * 1.8**2 / 3 + sail * (0.6**2 + 1.8**2 / 18)
+
+    def rig_parameters(self) -> RigParameters:
+        figures, act = self.rig_figures, ACTUATORS
+        rig = RigParameters()
+        rig.mast_step = wp.vec3(MAST_STEP[0], MAST_STEP[1], MAST_STEP[2])
+        rig.sail_arm = figures.sail_arm
+        rig.sail_height = figures.sail_center_height
+        rig.sail_area = figures.sail_area
+        rig.keel_center = wp.vec3(*figures.keel_center)
+        rig.keel_area = figures.keel_area
+        rig.rudder_center = wp.vec3(*figures.rudder_center)
+        rig.rudder_area = figures.rudder_area
+        rig.propeller_position = wp.vec3(*act["propeller_position"])
+        rig.thrust_per_level = act["thrust_per_level"]
+        rig.reverse_factor = act["reverse_factor"]
+        rig.max_level = act["propeller_levels"]
+        rig.rudder_limit = np.radians(act["rudder_limit_deg"])
+        rig.rudder_rate = act["rudder_rate"]
+        rig.sheet_limit_max = np.radians(act["sheet_limit_deg"])
+        rig.sheet_rate = act["sheet_rate"]
+        rig.boom_inertia = self.boom_inertia
+        rig.boom_damping = figures.boom_damping
+        rig.air_density = ENVIRONMENT["air_density"]
+        rig.water_density = self.config.water_density
+        rig.windage_area = WINDAGE_AREA
+        rig.windage_center = wp.vec3(MAST_STEP[0], 0.0, WINDAGE_HEIGHT)
+        tuned = self.config.original_tuning
+        rig.sail_lift_limit_deg = 100.0 if tuned else 180.0
+        rig.foil_lift_limit_deg = 90.0 if tuned else 180.0
+        rig.original_tuning = int(tuned)
+        return rig
+
+    def foil_tables(self, device) -> FoilTables:
+        tables = FoilTables()
+        for name, column in (("sail_lift", 1), ("sail_drag", 2), ("foil_lift", 3), ("foil_drag", 4)):
+            setattr(tables, name, wp.array(self.foil_table[:, column].astype(np.float32), dtype=float, device=device))
+        return tables
+
+    def point_buoyancy(self, device, gravity: float) -> PointBuoyancy:
+        """The original twin's four buoyancy points (sheet: x = +-0.6, y = +-0.45 m, R 0.4 m, L 2.4 m)."""
+        model = PointBuoyancy()
+        model.points = wp.array(np.array(self.vrx.points, dtype=np.float32), dtype=wp.vec3, device=device)
+        model.radius = self.vrx.hull_radius
+        model.slice_length = self.vrx.hull_length / 2.0
+        model.density = self.config.water_density
+        model.gravity = gravity
+        return model
+
+    def rest_height(self, device="cpu") -> float:
+        """Height [m] of the base frame above still water when the boat floats upright at rest (found
+        by bisection on the vertical force of the hull pass)."""
+        from ..fleet import Fleet
+        from ..ocean import Ocean
+        from ..ocean_config import OceanConfig
+        from ..simulator import Simulator, SimulatorConfig
+
+        fleet = Fleet(self.boat_type, 1, device=device)
+        still = Ocean(OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0), device=device)
+        simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=self.hydrodynamics.without_drag()))
+        low, high = -0.5, 0.5
+        weight = self.boat_type.mass * self.hydrodynamics.gravity
+        for _ in range(40):
+            middle = 0.5 * (low + high)
+            fleet.reset(position=[0.0, 0.0, middle])
+            simulator.compute_hull_wrenches()
+            if fleet.hydro_wrench.numpy()[0, 2] < weight:
+                high = middle
+            else:
+                low = middle
+        return 0.5 * (low + high)
+
+    def waterline_length(self, waterline_z: float = 0.0) -> float:
+        """Length [m] of the hull where the plane z = ``waterline_z`` (base frame) cuts it."""
+        vertices = self.hull.vertices
+        edges = self.hull.to_trimesh().edges_unique
+        z0, z1 = vertices[edges[:, 0], 2] - waterline_z, vertices[edges[:, 1], 2] - waterline_z
+        crossing = z0 * z1 < 0
+        t = z0[crossing] / (z0[crossing] - z1[crossing])
+        x = vertices[edges[crossing, 0], 0] + t * (vertices[edges[crossing, 1], 0] - vertices[edges[crossing, 0], 0])
+        return float(np.ptp(x))
+

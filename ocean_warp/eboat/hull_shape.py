@@ -1,0 +1,121 @@
+"""A procedural sailboat hull for the E-Boat: the canoe body, lofted from superellipse sections.
+
+The sheet gives the length overall (2.5 m) and the collision box of the hull (2.7 x 1.0 x 0.63 m). The
+shape within them is ours: a pointed bow, a wide transom, maximum beam a little aft of midships, a keel
+line with rocker, and full, firm-bilged sections (superellipse exponent 4) using the box's whole 1 m
+beam. The sheet's mass figures put the centre of mass 0.16 m above the waterline (the mast's 12.5 kg
+at 2 m), so the boat's stability comes from the waterplane: with 2.5-exponent sections of 0.92 m beam
+the metacentric height was 6 cm and the boat capsized in 7 m/s of wind; these sections give about
+0.25 m. The keel fin, its bulb and the rudder are not part of this mesh: they act through the foil
+model (sheet, "Sail, keel and rudder"), which would otherwise count their drag twice.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..hull import Hull
+
+__all__ = ["HullShape", "eboat_hull"]
+
+
+@dataclasses.dataclass(frozen=True)
+class HullShape:
+    """Dimensions of the canoe body in the base frame [m] (x bow, z up, waterline at z = 0)."""
+
+    stern_x: float = -1.2
+    """Transom."""
+    bow_x: float = 1.3
+    """Stem head; with the transom, 2.5 m overall (sheet)."""
+    half_beam: float = 0.5
+    """Largest half-breadth, at the deck (beam 1.0 m, the sheet's box)."""
+    deck_z: float = 0.38
+    keel_z: float = -0.22
+    """Lowest point of the keel line; deck to keel 0.60 m, within the sheet's 0.63 m box."""
+    widest_at: float = 0.4
+    """Fraction of the length from the stern where the beam is greatest."""
+    transom_beam_fraction: float = 0.75
+    section_exponent: float = 4.0
+    stations: int = 44
+    section_points: int = 12
+
+
+def _half_beam(shape: HullShape, xi: np.ndarray) -> np.ndarray:
+    """Half-breadth at the deck at fraction xi of the length from the stern: an ellipse-like curve to
+    the widest point, then one that closes to a sharp bow."""
+    aft = xi <= shape.widest_at
+    t_aft = (shape.widest_at - xi) / shape.widest_at
+    t_fore = (xi - shape.widest_at) / (1.0 - shape.widest_at)
+    transom = shape.transom_beam_fraction
+    aft_curve = np.sqrt(np.clip(1.0 - (1.0 - transom**2) * t_aft**2, 0.0, 1.0))
+    fore_curve = np.clip(1.0 - np.clip(t_fore, 0.0, 1.0) ** 1.8, 0.0, 1.0) ** 0.75
+    return shape.half_beam * np.where(aft, aft_curve, fore_curve)
+
+
+def _keel_depth(shape: HullShape, xi: np.ndarray) -> np.ndarray:
+    """Deck-to-keel depth: deepest a little aft of midships, rising towards the bow and the transom."""
+    deepest = shape.deck_z - shape.keel_z
+    aft = np.clip((0.45 - xi) / 0.45, 0.0, 1.0)
+    fore = np.clip((xi - 0.45) / 0.55, 0.0, 1.0)
+    rocker = 0.35 * aft**2 + 0.75 * fore**2.2
+    return deepest * (1.0 - rocker)
+
+
+def eboat_hull(shape: HullShape | None = None) -> Hull:
+    """The canoe body as a closed mesh: port and starboard skins, the deck and the transom."""
+    shape = shape or HullShape()
+    n, m = shape.stations, shape.section_points
+    xi = np.linspace(0.0, 1.0, n)
+    x = shape.stern_x + xi * (shape.bow_x - shape.stern_x)
+    half_beam = np.maximum(_half_beam(shape, xi), 1e-3)
+    depth = _keel_depth(shape, xi)
+    # Superellipse quarter section: u = 0 at the deck edge, u = pi/2 on the keel line.
+    u = np.linspace(0.0, 0.5 * math.pi, m)
+    power = 2.0 / shape.section_exponent
+    ys = np.cos(u) ** power
+    zs = np.sin(u) ** power
+
+    vertices = []
+    port = np.empty((n, m), dtype=np.int64)
+    starboard = np.empty((n, m), dtype=np.int64)
+    for i in range(n):
+        for j in range(m):
+            z = shape.deck_z - depth[i] * zs[j]
+            if j == m - 1:  # the keel line point is shared by both skins
+                port[i, j] = starboard[i, j] = len(vertices)
+                vertices.append((x[i], 0.0, z))
+                continue
+            port[i, j] = len(vertices)
+            vertices.append((x[i], half_beam[i] * ys[j], z))
+            starboard[i, j] = len(vertices)
+            vertices.append((x[i], -half_beam[i] * ys[j], z))
+    stem = len(vertices)  # the bow closes on one point at deck height (the keel-line point is shared)
+    vertices.append((shape.bow_x + 1e-3, 0.0, shape.deck_z))
+
+    faces = []
+    for i in range(n - 1):
+        for j in range(m - 1):
+            a, b, c, d = port[i, j], port[i + 1, j], port[i + 1, j + 1], port[i, j + 1]
+            faces += [(a, b, c), (a, c, d)]
+            a, b, c, d = starboard[i, j], starboard[i + 1, j], starboard[i + 1, j + 1], starboard[i, j + 1]
+            faces += [(a, d, c), (a, c, b)]
+    # Bow: fan from the stem point over the last station's section, both sides.
+    last = n - 1
+    for j in range(m - 1):
+        faces.append((port[last, j], stem, port[last, j + 1]))
+        faces.append((starboard[last, j], starboard[last, j + 1], stem))
+    # Deck: quads between the deck edges of neighbouring stations, and the bow tip.
+    for i in range(n - 1):
+        faces += [(port[i, 0], starboard[i, 0], starboard[i + 1, 0]), (port[i, 0], starboard[i + 1, 0], port[i + 1, 0])]
+    faces.append((port[last, 0], starboard[last, 0], stem))
+    # Transom: the first station's section, closed with a fan from a point in its middle.
+    transom_centre = len(vertices)
+    vertices.append((shape.stern_x, 0.0, shape.deck_z - 0.5 * depth[0]))
+    ring = [port[0, j] for j in range(m)] + [starboard[0, j] for j in range(m - 2, -1, -1)]
+    for k in range(len(ring) - 1):
+        faces.append((transom_centre, ring[k], ring[k + 1]))
+    faces.append((transom_centre, ring[-1], ring[0]))
+    return Hull(np.array(vertices), np.array(faces), name="eboat")

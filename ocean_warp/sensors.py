@@ -1,0 +1,139 @@
+"""Sensors of each boat, read once per step with noise and rates (a Simulator model)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import warp as wp
+
+from .kernels.hull_forces import vec6
+from .kernels.sensors import CHANNELS, SensorModel, advance_sensor_counter, read_sensors, reset_sensors
+from .torch_streams import ordered_with_torch
+from .validation import require_int_in_range, require_non_negative
+
+__all__ = ["SensorConfig", "Sensors", "CHANNEL_NAMES"]
+
+CHANNEL_NAMES = (
+    "gnss_x", "gnss_y", "gnss_z", "gnss_vx", "gnss_vy", "gnss_vz",
+    "accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z",
+    "heading", "apparent_wind_angle", "apparent_wind_speed", "water_speed",
+)
+"""Column names of the reading arrays; units and frames in ``ocean_warp.kernels.sensors``."""
+
+
+@dataclasses.dataclass(frozen=True)
+class SensorConfig:
+    """Noise (standard deviations) and refresh rates of each sensor. A rate of 0 refreshes every step;
+    otherwise the reading refreshes every round(1 / (rate * step)) steps and holds in between."""
+
+    gnss_rate: float = 5.0
+    """[Hz]"""
+    gnss_position_std: float = 0.5
+    """[m] per axis."""
+    gnss_velocity_std: float = 0.05
+    """[m/s] per axis."""
+    imu_rate: float = 0.0
+    """[Hz]; 0: every step."""
+    accelerometer_std: float = 0.05
+    """[m/s^2]"""
+    accelerometer_bias_std: float = 0.02
+    """Standard deviation of the per-boat constant bias drawn at each reset [m/s^2]."""
+    gyroscope_std: float = 0.005
+    """[rad/s]"""
+    gyroscope_bias_std: float = 0.002
+    """[rad/s]"""
+    compass_rate: float = 10.0
+    """[Hz]"""
+    compass_std: float = 0.02
+    """[rad]"""
+    wind_rate: float = 5.0
+    """[Hz], vane and anemometer."""
+    wind_angle_std: float = 0.05
+    """[rad]"""
+    wind_speed_std: float = 0.2
+    """[m/s]"""
+    water_speed_rate: float = 5.0
+    """[Hz]"""
+    water_speed_std: float = 0.05
+    """[m/s]"""
+    seed: int = 0
+
+    def __post_init__(self):
+        for field in dataclasses.fields(self):
+            if field.name == "seed":
+                object.__setattr__(self, "seed", require_int_in_range("SensorConfig", "seed", self.seed, 0, 2**31 - 1))
+            else:
+                object.__setattr__(self, field.name, require_non_negative("SensorConfig", field.name,
+                                                                          getattr(self, field.name)))
+
+    @classmethod
+    def noise_free(cls, **rates) -> "SensorConfig":
+        """Exact readings (every noise and bias 0), at the given rates."""
+        zero = {f.name: 0.0 for f in dataclasses.fields(cls) if f.name.endswith("_std")}
+        return cls(**zero, **rates)
+
+    def channel_noise(self) -> np.ndarray:
+        return np.array([self.gnss_position_std] * 3 + [self.gnss_velocity_std] * 3 + [self.accelerometer_std] * 3
+                        + [self.gyroscope_std] * 3 + [self.compass_std, self.wind_angle_std, self.wind_speed_std,
+                                                      self.water_speed_std], dtype=np.float32)
+
+    def channel_periods(self, step: float) -> np.ndarray:
+        """Steps between refreshes per channel for steps of ``step`` [s]."""
+        def period(rate):
+            return 1 if rate == 0.0 else max(1, round(1.0 / (rate * step)))
+        rates = [self.gnss_rate] * 6 + [self.imu_rate] * 6 + [self.compass_rate, self.wind_rate, self.wind_rate,
+                                                             self.water_speed_rate]
+        return np.array([period(r) for r in rates], dtype=np.int32)
+
+
+class Sensors:
+    """Readings of ``count`` boats: ``truth`` (noise-free) and ``readings`` (noisy, at their rates),
+    both (count, 16), columns as :data:`CHANNEL_NAMES`. A Simulator model: it reads once per step."""
+
+    def __init__(self, config: SensorConfig | None, count: int, *, masthead, wind, device=None):
+        self.config = config if config is not None else SensorConfig()
+        self.device = wp.get_device(device)
+        self.count = int(count)
+        self.wind = wind
+        self.masthead = tuple(float(v) for v in masthead)
+        self.truth = wp.zeros((self.count, CHANNELS), dtype=float, device=self.device)
+        """(N, 16) exact readings of the last step."""
+        self.readings = wp.zeros((self.count, CHANNELS), dtype=float, device=self.device)
+        """(N, 16) noisy readings, held between refreshes."""
+        self.imu_bias = wp.zeros(self.count, dtype=vec6, device=self.device)
+        self._previous_velocity = wp.zeros(self.count, dtype=wp.vec3, device=self.device)
+        self._counter = wp.zeros(1, dtype=int, device=self.device)
+        self._model = None
+
+    def bind(self, step: float, gravity: float) -> None:
+        """Prepare for steps of ``step`` [s] under ``gravity`` (done by the E-Boat simulator)."""
+        model = SensorModel()
+        model.noise_std = wp.array(self.config.channel_noise(), dtype=float, device=self.device)
+        model.period = wp.array(self.config.channel_periods(step), dtype=int, device=self.device)
+        model.masthead = wp.vec3(*self.masthead)
+        model.gravity = gravity
+        model.step = step
+        model.seed = self.config.seed
+        self._model = model
+
+    def substep(self, simulator) -> None:
+        """Sensors read once per step, not per substep."""
+
+    def step(self, simulator) -> None:
+        fleet = simulator.fleet
+        wp.launch(read_sensors, dim=self.count, device=self.device,
+                  inputs=[self._model, self.wind.gusts, self._counter, fleet.position, fleet.orientation,
+                          fleet.velocity, fleet.water_velocity, self.wind.velocity, self.imu_bias],
+                  outputs=[self._previous_velocity, self.truth, self.readings])
+        wp.launch(advance_sensor_counter, dim=1, inputs=[self._counter], device=self.device)
+
+    def reset(self, boats: np.ndarray, fleet) -> None:
+        """New IMU biases for ``boats`` and no false acceleration on their next reading."""
+        c = self.config
+        bias_std = vec6(*([c.accelerometer_bias_std] * 3 + [c.gyroscope_bias_std] * 3))
+        with ordered_with_torch(self.device):
+            wp.launch(reset_sensors, dim=len(boats), device=self.device,
+                      inputs=[wp.array(boats.astype(np.int32), dtype=int, device=self.device), bias_std, c.seed,
+                              self._counter, fleet.orientation, fleet.velocity],
+                      outputs=[self.imu_bias, self._previous_velocity])

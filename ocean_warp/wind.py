@@ -1,0 +1,126 @@
+"""Wind per environment: a mean speed and direction, gusts, a height profile (a Simulator model)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import warp as wp
+
+from .kernels.wind import GustModel, advance_wind_counter, reset_wind, update_wind
+from .torch_streams import ordered_with_torch
+from .validation import require_finite, require_int_in_range, require_non_negative, require_positive
+
+__all__ = ["WindConfig", "Wind"]
+
+
+@dataclasses.dataclass(frozen=True)
+class WindConfig:
+    """The wind over every environment, until :meth:`Wind.set` changes an environment's mean.
+
+    Gusts are Ornstein-Uhlenbeck processes on speed and direction (see ``ocean_warp.kernels.wind``):
+    each wanders around its mean with the given standard deviation and correlation time."""
+
+    speed: float = 5.0
+    """Mean speed at the reference height [m/s]."""
+    direction: float = 0.0
+    """Mean direction the wind blows towards [rad], from +x (east) counter-clockwise (as the waves)."""
+    gust_speed_std: float = 0.0
+    """Standard deviation of the speed around its mean [m/s]; 0: steady."""
+    gust_speed_time: float = 10.0
+    """Correlation time of the speed [s]."""
+    gust_direction_std: float = 0.0
+    """Standard deviation of the direction around its mean [rad]; 0: steady."""
+    gust_direction_time: float = 30.0
+    """Correlation time of the direction [s]."""
+    profile_exponent: float = 0.0
+    """p in U(z) = U (z / reference_height)^p; 0 (the default, as the original twin): the same at every
+    height; 1/7 is a common open-sea value."""
+    reference_height: float = 10.0
+    """Height [m] at which ``speed`` holds when there is a profile."""
+    seed: int = 0
+    """Seed of the gusts' random streams."""
+
+    def __post_init__(self):
+        owner = "WindConfig"
+        for name in ("speed", "gust_speed_std", "gust_direction_std"):
+            object.__setattr__(self, name, require_non_negative(owner, name, getattr(self, name)))
+        object.__setattr__(self, "direction", require_finite(owner, "direction", self.direction))
+        for name in ("gust_speed_time", "gust_direction_time", "reference_height"):
+            object.__setattr__(self, name, require_positive(owner, name, getattr(self, name)))
+        exponent = require_non_negative(owner, "profile_exponent", self.profile_exponent)
+        if exponent > 1.0:
+            raise ValueError(f"{owner}.profile_exponent must be in [0, 1], got {exponent!r}")
+        object.__setattr__(self, "profile_exponent", exponent)
+        object.__setattr__(self, "seed", require_int_in_range(owner, "seed", self.seed, 0, 2**31 - 1))
+
+    def gust_model(self, dt: float) -> GustModel:
+        """The kernels' view of this config for substeps of ``dt`` [s]."""
+        gusts = GustModel()
+        gusts.speed_decay = math.exp(-dt / self.gust_speed_time)
+        gusts.speed_noise = self.gust_speed_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_speed_time))
+        gusts.direction_decay = math.exp(-dt / self.gust_direction_time)
+        gusts.direction_noise = self.gust_direction_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_direction_time))
+        gusts.profile_exponent = self.profile_exponent
+        gusts.reference_height = self.reference_height
+        gusts.seed = self.seed
+        return gusts
+
+
+class Wind:
+    """Device arrays of the wind over ``count`` environments and the model that updates them every
+    substep (pass it among a Simulator's models, before the models that read it)."""
+
+    def __init__(self, config: WindConfig | None = None, count: int = 1, *, device=None):
+        self.config = config if config is not None else WindConfig()
+        self.device = wp.get_device(device)
+        self.count = int(count)
+        full = lambda value: wp.full(self.count, value, dtype=float, device=self.device)  # noqa: E731
+        self.mean_speed = full(self.config.speed)
+        """(N,) mean speed per environment [m/s]."""
+        self.mean_direction = full(self.config.direction)
+        """(N,) mean direction per environment [rad]."""
+        self.speed = full(self.config.speed)
+        """(N,) current speed with gusts [m/s]."""
+        self.direction = full(self.config.direction)
+        """(N,) current direction with gusts [rad]."""
+        initial = np.tile([self.config.speed * math.cos(self.config.direction),
+                           self.config.speed * math.sin(self.config.direction), 0.0], (self.count, 1))
+        self.velocity = wp.array(initial.astype(np.float32), dtype=wp.vec3, device=self.device)
+        """(N,) wind vector at the reference height, world frame [m/s]."""
+        self._counter = wp.zeros(1, dtype=int, device=self.device)
+        self.gusts = self.config.gust_model(1.0)
+
+    def bind(self, substep: float) -> None:
+        """Prepare the gust model for substeps of ``substep`` [s] (done by the E-Boat simulator)."""
+        self.gusts = self.config.gust_model(substep)
+
+    def substep(self, simulator) -> None:
+        wp.launch(update_wind, dim=self.count, device=self.device,
+                  inputs=[self.gusts, self._counter, self.mean_speed, self.mean_direction],
+                  outputs=[self.speed, self.direction, self.velocity])
+        wp.launch(advance_wind_counter, dim=1, inputs=[self._counter], device=self.device)
+
+    def set(self, envs=None, *, speed, direction) -> None:
+        """Set the mean wind of the chosen environments (None: all) and restart their gusts from it:
+        ``speed`` [m/s] and ``direction`` [rad] per environment or one value for all."""
+        indices = np.arange(self.count) if envs is None else np.asarray(
+            envs.detach().cpu().numpy() if hasattr(envs, "detach") else envs).reshape(-1)
+        if indices.size and (indices.min() < 0 or indices.max() >= self.count):
+            raise ValueError(f"Wind.set: environment indices must lie in [0, {self.count - 1}]")
+        speeds = np.broadcast_to(np.asarray(speed, dtype=np.float64), indices.shape)
+        directions = np.broadcast_to(np.asarray(direction, dtype=np.float64), indices.shape)
+        if not (np.all(np.isfinite(speeds)) and np.all(speeds >= 0)):
+            raise ValueError("Wind.set: speed must be finite and >= 0 [m/s]")
+        if not np.all(np.isfinite(directions)):
+            raise ValueError("Wind.set: direction must be finite [rad]")
+        if not indices.size:
+            return
+        device = self.device
+        with ordered_with_torch(device):
+            wp.launch(reset_wind, dim=len(indices), device=device,
+                      inputs=[wp.array(indices.astype(np.int32), dtype=int, device=device),
+                              wp.array(speeds.astype(np.float32), dtype=float, device=device),
+                              wp.array(directions.astype(np.float32), dtype=float, device=device)],
+                      outputs=[self.mean_speed, self.mean_direction, self.speed, self.direction, self.velocity])

@@ -1,0 +1,141 @@
+"""The E-Boat under sail and motor: actuators, symmetry, resistance, head to wind, the speed polar."""
+
+import math
+
+import numpy as np
+import pytest
+
+import ocean_warp as ow
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator
+from ocean_warp.eboat.polar import speed_polar
+from ocean_warp.examples.polar import hull_speed
+from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
+
+CALM = ow.WindConfig(speed=0.0)
+
+
+def run(sim, seconds):
+    for _ in range(int(round(seconds / sim.simulator.config.dt))):
+        sim.step()
+    return sim.fleet.numpy()
+
+
+def test_rudder_turns_to_port_when_positive_and_moves_at_its_rate(device):
+    sim = EBoatSimulator(3, wind=CALM, device=device)
+    sim.reset(position=[[0, 0, 0.05], [30, 0, 0.05], [60, 0, 0.05]], velocity=[1.2, 0, 0, 0, 0, 0])
+    t = sim.tensors
+    t.propeller_command[:] = 3
+    t.rudder_command[:] = t.rudder_command.new_tensor([0.4, -0.4, 2.0])  # the last beyond the 60 deg range
+    state = run(sim, 0.5)
+    rudder = sim.rig.rudder_angle.numpy()
+    np.testing.assert_allclose(rudder, [0.2, -0.2, 0.2], atol=1e-5)  # 0.4 rad/s for 0.5 s
+    state = run(sim, 4.0)
+    assert state["velocity"][0, 5] > 0.05 and state["velocity"][1, 5] < -0.05
+    assert sim.rig.rudder_angle.numpy()[2] == pytest.approx(math.radians(60.0), abs=1e-5)
+
+
+def test_boom_swings_to_leeward_within_the_sheet_limit(device):
+    sim = EBoatSimulator(2, wind=ow.WindConfig(speed=6.0, direction=math.pi), device=device)
+    # Heading north: the wind (from the east) comes over the starboard side of boat 0, over port for boat 1.
+    sim.reset(position=[[0, 0, 0.05], [30, 0, 0.05]], heading=[math.pi / 2, -math.pi / 2])
+    sim.tensors.sheet_command[:] = math.radians(50)
+    run(sim, 1.0)
+    assert sim.rig.sheet_limit.numpy() == pytest.approx([0.5, 0.5], abs=1e-5)  # 0.5 rad/s for 1 s
+    run(sim, 3.0)
+    boom = sim.rig.boom_angle.numpy()
+    np.testing.assert_allclose(boom, [math.radians(50), -math.radians(50)], atol=1e-4)  # at the limit, leeward
+
+
+def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
+    sim = EBoatSimulator(2, wind=ow.WindConfig(speed=1.0), device=device)
+    heading, roll, pitch = rng.uniform(-math.pi, math.pi), rng.uniform(-0.2, 0.2), rng.uniform(-0.05, 0.05)
+    wind_direction = rng.uniform(-math.pi, math.pi)
+    nu = np.concatenate([rng.uniform(-1, 2, 3) * [1, 0.3, 0.1], rng.uniform(-0.2, 0.2, 3)])
+    mirror_nu = nu * [1, -1, 1, -1, 1, -1]
+    sim.reset(position=[[0, 5.0, 0.03], [40, -5.0, 0.03]], velocity=np.stack([nu, mirror_nu]),
+              wind_speed=rng.uniform(4, 9), wind_direction=[wind_direction, -wind_direction])
+    sim.fleet.reset(position=[[0, 5.0, 0.03], [40, -5.0, 0.03]], velocity=np.stack([nu, mirror_nu]),
+                    orientation=quaternion_from_roll_pitch_yaw([[roll, pitch, heading], [-roll, pitch, -heading]]))
+    t = sim.tensors
+    rudder, sheet = rng.uniform(-0.5, 0.5), rng.uniform(0.2, 1.2)
+    t.rudder_command[:] = t.rudder_command.new_tensor([rudder, -rudder])
+    t.sheet_command[:] = sheet
+    t.propeller_command[:] = int(rng.integers(-5, 6))
+    flip_force = np.array([1, -1, 1, -1, 1, -1])
+    sim.step()
+    wrench = sim.fleet.hydro_wrench.numpy() + sim.fleet.model_wrench.numpy()
+    scale = np.abs(wrench[0]).max()
+    np.testing.assert_allclose(wrench[1], wrench[0] * flip_force, atol=1e-4 * scale)
+    state = run(sim, 8.0)
+    np.testing.assert_allclose(state["velocity"][1], state["velocity"][0] * flip_force, atol=2e-3)
+    angles = roll_pitch_yaw(state["orientation"])
+    np.testing.assert_allclose(angles[1], angles[0] * [-1, 1, -1], atol=2e-3)
+    travelled = state["position"] - [[0, 5.0, 0], [40, -5.0, 0]]
+    np.testing.assert_allclose(travelled[1], travelled[0] * [1, -1, 1], atol=5e-3)
+    np.testing.assert_allclose(sim.rig.boom_angle.numpy()[1], -sim.rig.boom_angle.numpy()[0], atol=2e-3)
+
+
+def test_head_to_wind_the_boat_loses_speed(device):
+    sim = EBoatSimulator(2, wind=ow.WindConfig(speed=8.0, direction=math.pi), device=device)
+    # Boat 0 heads into the wind (it comes from +x); boat 1 coasts the same way in still air.
+    sim.reset(position=[[0, 0, 0.05], [0, 40, 0.05]], heading=0.0, velocity=[1.5, 0, 0, 0, 0, 0],
+              wind_speed=[8.0, 0.0], wind_direction=math.pi)
+    sim.tensors.sheet_command[:] = math.radians(30)
+    speeds = []
+    for _ in range(8):
+        state = run(sim, 2.0)
+        speeds.append(state["velocity"][:, 0])
+    speeds = np.array(speeds)
+    assert np.all(np.diff(speeds[:4, 0]) < 0), "head to wind the boat slows down"
+    assert speeds[-1, 0] < 0.3
+    assert np.all(speeds[:, 0] < speeds[:, 1]), "and faster than in still air"
+
+
+def steady_speed(sim, seconds=60.0, window=10.0):
+    run(sim, seconds - window)
+    speeds = [run(sim, 1.0)["velocity"][:, 0] for _ in range(int(window))]
+    return np.mean(speeds, axis=0), np.ptp(speeds, axis=0)
+
+
+def test_full_thrust_speed_is_where_thrust_meets_the_towing_resistance(device):
+    motor = EBoatSimulator(1, wind=CALM, device=device)
+    motor.reset(position=[0, 0, 0.05])
+    motor.tensors.propeller_command[:] = 5
+    speed, wobble = steady_speed(motor)
+    assert wobble[0] < 0.01 * speed[0], "steady"
+    thrust = 5 * 24.02  # sheet: 24.02 N per level
+    # Towing tank: the same boat pulled at its centre of mass by known horizontal forces.
+    forces = np.array([0.8, 1.0, 1.2]) * thrust
+    tow = EBoatSimulator(3, wind=CALM, device=device)
+    tow.reset(position=[[0, 0, 0.05], [0, 20, 0.05], [0, 40, 0.05]])
+    wrench = np.zeros((3, 6))
+    wrench[:, 0] = forces
+    tow.fleet.tensors.wrench_world[:] = tow.fleet.tensors.wrench_world.new_tensor(wrench)
+    towed, _ = steady_speed(tow)
+    assert np.all(np.diff(towed) > 0)
+    resistance_at_motor_speed = np.interp(speed[0], towed, forces)
+    assert resistance_at_motor_speed == pytest.approx(thrust, rel=0.05)
+    assert 0.5 * hull_speed(motor.eboat) < speed[0] < 1.2 * hull_speed(motor.eboat)
+
+
+def test_original_tuning_scales_the_rudder_force(device):
+    forces = []
+    for tuned in (False, True):
+        sim = EBoatSimulator(1, eboat=EBoat(EBoatConfig(original_tuning=tuned)), wind=CALM, device=device)
+        sim.reset(position=[0, 0, 0.05], velocity=[1.5, 0, 0, 0, 0, 0])
+        sim.rig.rudder_angle.fill_(0.3)
+        sim.rig.rudder_command.fill_(0.3)
+        sim.simulator.substep()  # one substep: no leeway yet, so the rudder is the only side force
+        forces.append(sim.fleet.model_wrench.numpy()[0, 1])
+    assert forces[1] == pytest.approx(0.3 * forces[0], rel=0.05)
+
+
+def test_coarse_polar_has_a_no_go_zone_and_sane_speeds(device):
+    result = speed_polar(wind_speeds=[7.0], wind_angles_deg=[20.0, 60.0, 90.0, 150.0],
+                         sheets_deg=[0.0, 15.0, 30.0, 45.0, 60.0, 75.0], settle_time=45.0, average_time=15.0,
+                         device=device)
+    speed, heel = result.speed[0], np.degrees(result.heel[0])
+    assert np.isnan(speed[0]), "no steady progress 20 degrees off the wind"
+    assert np.all(speed[1:] > 0.3)
+    assert np.nanmax(speed) < 1.5 * hull_speed(EBoat())
+    assert abs(heel[2]) < 35.0, "beam reach in 7 m/s"

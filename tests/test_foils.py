@@ -1,0 +1,78 @@
+"""Foil forces against 1/2 rho A V^2 C, with C read from the sheet's table by the test itself."""
+
+import csv
+import importlib.resources
+import math
+
+import numpy as np
+import pytest
+import warp as wp
+
+from ocean_warp.eboat import EBoat
+from ocean_warp.kernels.foils import FoilTables, foil_force
+
+
+def sheet_table():
+    """alpha -> (sail C_L, sail C_D, foil C_L, foil C_D), read with the csv module."""
+    with importlib.resources.files("ocean_warp.eboat").joinpath("foil_coefficients.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    return {int(r["alpha_deg"]): tuple(float(r[k]) for k in ("sail_cl", "sail_cd", "foil_cl", "foil_cd")) for r in rows}
+
+
+def expected_coefficients(table, alpha_deg, which):
+    """Linear interpolation in the table; C_L odd, C_D even in alpha."""
+    a = abs(alpha_deg)
+    lower = min(int(math.floor(a)), 179)
+    t = a - lower
+    lift = (1 - t) * table[lower][2 * which] + t * table[lower + 1][2 * which]
+    drag = (1 - t) * table[lower][2 * which + 1] + t * table[lower + 1][2 * which + 1]
+    return (lift if alpha_deg >= 0 else -lift), drag
+
+
+@wp.kernel
+def _forces(flows: wp.array(dtype=wp.vec3), chord: wp.vec3, span: wp.vec3, area: float, density: float,
+            tables: FoilTables, which: int, out: wp.array(dtype=wp.vec3)):
+    i = wp.tid()
+    if which == 0:
+        out[i] = foil_force(flows[i], chord, span, area, density, tables.sail_lift, tables.sail_drag)
+    else:
+        out[i] = foil_force(flows[i], chord, span, area, density, tables.foil_lift, tables.foil_drag)
+
+
+@pytest.mark.parametrize("which", [0, 1], ids=["sail", "keel and rudder"])
+def test_foil_force_is_half_rho_a_v2_c(device, rng, which):
+    table = sheet_table()
+    tables = EBoat().foil_tables(device)
+    # (Not +-180: the sail's C_L there, -0.88, changes sign with the side the flow comes from.)
+    tabulated = [0.0, 10.0, 29.0, 32.0, -45.0, 90.0, -135.0, 179.0]
+    interpolated = list(rng.uniform(-179.5, 179.5, size=12))
+    angles = np.array(tabulated + interpolated)
+    speed = rng.uniform(0.5, 12.0)
+    area, density = rng.uniform(0.1, 4.0), rng.uniform(1.0, 1100.0)
+    chord, span = np.array([-1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
+    # Flow at angle alpha from the chord about the span, plus a spanwise part that must not count.
+    alphas = np.radians(angles)
+    section = speed * np.stack([-np.cos(alphas), -np.sin(alphas), np.zeros_like(alphas)], axis=1)
+    flows = section + rng.uniform(-3, 3, size=(len(angles), 1)) * span
+    out = wp.zeros(len(angles), dtype=wp.vec3, device=device)
+    wp.launch(_forces, dim=len(angles), device=device,
+              inputs=[wp.array(flows, dtype=wp.vec3, device=device), wp.vec3(*chord), wp.vec3(*span), area, density,
+                      tables, which], outputs=[out])
+    forces = out.numpy().astype(np.float64)
+    for k, alpha in enumerate(angles):
+        c_lift, c_drag = expected_coefficients(table, alpha, which)
+        q = 0.5 * density * area * speed**2
+        direction = section[k] / speed
+        lift_direction = np.cross(span, direction)
+        np.testing.assert_allclose(forces[k] @ direction, q * c_drag, rtol=2e-5, atol=1e-6 * q)
+        np.testing.assert_allclose(forces[k] @ lift_direction, q * c_lift, rtol=2e-5, atol=1e-6 * q)
+        assert abs(forces[k] @ span) < 1e-6 * q
+
+
+def test_lift_is_odd_and_drag_even_in_the_angle(device):
+    table = sheet_table()
+    assert table[29][0] == pytest.approx(1.306, abs=5e-4)  # sheet: sail C_L peaks at 1.306 at 29 deg
+    assert max(table[a][2] for a in range(181)) == pytest.approx(1.386, abs=5e-4)  # foil C_L peak (stall)
+    for a in range(0, 91):  # foil C_L antisymmetric, C_D symmetric about 90 deg
+        assert table[90 + a][2] == pytest.approx(-table[90 - a][2], abs=1e-4)
+        assert table[90 + a][3] == pytest.approx(table[90 - a][3], abs=1e-4)
