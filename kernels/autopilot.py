@@ -2,15 +2,11 @@
 
 from __future__ import annotations
 
-import math
-
 import warp as wp
 
-from .hull_forces import vec6
+from .spatial import heading_of, vec6, wrap_angle
 
 __all__ = ["HeadingGains", "hold_heading"]
-
-PI = wp.constant(math.pi)
 
 
 @wp.struct
@@ -40,10 +36,7 @@ def hold_heading(
     a positive rudder turns to port, towards a larger heading (yaw from +x, counter-clockwise). The
     integral stops growing while the rudder is at its limit (anti-windup)."""
     boat = wp.tid()
-    q = orientation[boat]
-    heading = wp.atan2(2.0 * (q[3] * q[2] + q[0] * q[1]), 1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]))
-    error = target_heading[boat] - heading
-    error = error - 2.0 * PI * wp.floor((error + PI) / (2.0 * PI))
+    error = wrap_angle(target_heading[boat] - heading_of(orientation[boat]))
     accumulated = integral[boat] + error * gains.dt
     command = gains.proportional * error + gains.integral * accumulated - gains.damping * velocity[boat][5]
     if wp.abs(command) < gains.rudder_limit:

@@ -13,15 +13,14 @@ The tables hold C_L and C_D from 0 to 180 degrees in 1-degree steps; C_L is odd 
 
 from __future__ import annotations
 
-import math
-
 import warp as wp
 
-__all__ = ["FoilTables", "interpolate_table", "foil_coefficients", "angle_of_attack", "foil_force"]
+from .spatial import DEGREES
+
+__all__ = ["FoilTables", "interpolate_table", "angle_of_attack", "foil_force"]
 
 TABLE_STEP_DEG = wp.constant(1.0)
 TABLE_LAST = wp.constant(180)
-DEGREES = wp.constant(180.0 / math.pi)
 # Below this section speed [m/s] the flow direction is undefined and the foil carries no force.
 MIN_FOIL_SPEED = wp.constant(1.0e-6)
 
@@ -47,14 +46,6 @@ def interpolate_table(table: wp.array(dtype=float), angle_deg: float) -> float:
 
 
 @wp.func
-def foil_coefficients(lift: wp.array(dtype=float), drag: wp.array(dtype=float), alpha: float) -> wp.vec2:
-    """(C_L, C_D) at angle of attack ``alpha`` [rad] in [-pi, pi]: C_L odd, C_D even."""
-    magnitude = wp.abs(alpha) * DEGREES
-    sign = wp.where(alpha < 0.0, -1.0, 1.0)
-    return wp.vec2(sign * interpolate_table(lift, magnitude), interpolate_table(drag, magnitude))
-
-
-@wp.func
 def angle_of_attack(flow_direction: wp.vec3, chord: wp.vec3, span: wp.vec3) -> float:
     """Signed angle [rad] from the chord to the (unit, in-plane) flow direction, about the span."""
     return wp.atan2(wp.dot(wp.cross(chord, flow_direction), span), wp.dot(chord, flow_direction))
@@ -63,15 +54,21 @@ def angle_of_attack(flow_direction: wp.vec3, chord: wp.vec3, span: wp.vec3) -> f
 @wp.func
 def foil_force(
     flow: wp.vec3, chord: wp.vec3, span: wp.vec3, area: float, density: float,
-    lift: wp.array(dtype=float), drag: wp.array(dtype=float),
-) -> wp.vec3:
-    """Force [N] on a foil from the fluid moving at ``flow`` [m/s] relative to its centre of effort.
-    Vectors in any one frame; ``chord`` and ``span`` unit and perpendicular."""
+    lift: wp.array(dtype=float), drag: wp.array(dtype=float), lift_limit: float,
+) -> wp.vec4:
+    """(force [N], angle of attack [rad]) of a foil of ``area`` [m^2] in a fluid of ``density``
+    [kg/m^3] moving at ``flow`` [m/s] relative to its centre of effort. Vectors in any one frame;
+    ``chord`` and ``span`` unit and perpendicular. C_L is read at no larger |alpha| than
+    ``lift_limit`` [rad] (pi: the table as it is)."""
     section = flow - wp.dot(flow, span) * span
     speed = wp.length(section)
     if speed < MIN_FOIL_SPEED:
-        return wp.vec3()
+        return wp.vec4()
     direction = section / speed
-    coefficients = foil_coefficients(lift, drag, angle_of_attack(direction, chord, span))
-    dynamic_pressure_area = 0.5 * density * area * speed * speed
-    return dynamic_pressure_area * (coefficients[0] * wp.cross(span, direction) + coefficients[1] * direction)
+    alpha = angle_of_attack(direction, chord, span)
+    magnitude = wp.abs(alpha) * DEGREES
+    sign = wp.where(alpha < 0.0, -1.0, 1.0)
+    c_lift = sign * interpolate_table(lift, wp.min(magnitude, lift_limit * DEGREES))
+    c_drag = interpolate_table(drag, magnitude)
+    force = (0.5 * density * area * speed * speed) * (c_lift * wp.cross(span, direction) + c_drag * direction)
+    return wp.vec4(force[0], force[1], force[2], alpha)

@@ -20,9 +20,9 @@ from typing import Any
 import warp as wp
 
 from .ocean_surface import OceanSurface, surface_height_velocity
+from .spatial import vec6, wrench, wrench_at
 
 __all__ = [
-    "vec6",
     "HullMeshes",
     "WaterModel",
     "submerged_piece_wrench",
@@ -35,8 +35,6 @@ __all__ = [
     "sample_origin_water",
     "MAX_HULL_VERTICES",
 ]
-
-vec6 = wp.types.vector(length=6, dtype=wp.float32)
 
 # Triangles (or clipped pieces) smaller than this [m^2] carry no force: their normal is undefined.
 MIN_PIECE_AREA = wp.constant(1.0e-12)
@@ -73,19 +71,31 @@ class WaterModel:
     """``HydrodynamicsConfig`` as the kernels read it (0/1 for the switches)."""
 
     density: float
+    """[kg/m^3]"""
     gravity: float
+    """[m/s^2]"""
     kinematic_viscosity: float
+    """[m^2/s]"""
     inverse_reference_speed: float
+    """1 / v_r [s/m]."""
     pressure_drag_linear: float
+    """[N/m^2]"""
     pressure_drag_quadratic: float
+    """[N/m^2]"""
     pressure_drag_falloff: float
+    """Exponent of cos t (dimensionless)."""
     suction_linear: float
+    """[N/m^2]"""
     suction_quadratic: float
+    """[N/m^2]"""
     suction_falloff: float
+    """Exponent of |cos t| (dimensionless)."""
     skin_friction: int
     slamming: int
     slamming_power: float
+    """p of the slamming ramp (dimensionless)."""
     inverse_slamming_max_acceleration: float
+    """1 / Gamma_max [s^2/m]."""
     substep: float
     """Time step [s] of the substep, for the slamming rate."""
 
@@ -144,7 +154,7 @@ def submerged_piece_wrench(
             drag -= (0.5 * water.density * friction * area * wp.length(tangential)) * tangential
         force += drag
         moment += wp.cross(centroid, drag)
-    return vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+    return wrench(force, moment)
 
 
 @wp.func
@@ -310,8 +320,7 @@ def slamming_wrench(
         return vec6()
     ramp = wp.pow(wp.min(growth * water.inverse_slamming_max_acceleration, 1.0), water.slamming_power)
     force = -(ramp * cos_t * mass * 2.0 * submerged / (hull_area * water.substep)) * relative
-    moment = wp.cross(centroid, force)
-    return vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+    return wrench_at(force, centroid)
 
 
 @wp.func

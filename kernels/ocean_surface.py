@@ -32,10 +32,9 @@ class OceanSurface:
     """(4, n, n) field pairs, index [field, iy, ix]."""
     inv_cell_size: float
     """1 / grid spacing [1/m]."""
-    resolution: int
-    """Grid points per side (a power of two)."""
     index_mask: int
-    """resolution - 1: ``i & index_mask`` wraps any grid index, negative ones too (two's complement)."""
+    """Grid points per side (a power of two) less one: ``i & index_mask`` wraps any grid index, negative
+    ones too (two's complement)."""
     choppiness: float
     """Scale of the horizontal displacement."""
     inversion_iterations: int

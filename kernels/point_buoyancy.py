@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import warp as wp
 
-from .hull_forces import vec6
 from .ocean_surface import OceanSurface, surface_height
+from .spatial import vec6, wrench_at
 
 __all__ = ["PointBuoyancy", "circle_segment_area", "point_buoyancy"]
 
@@ -28,7 +28,9 @@ class PointBuoyancy:
     slice_length: float
     """l [m] of cylinder each point stands for."""
     density: float
+    """Water [kg/m^3]."""
     gravity: float
+    """[m/s^2]"""
 
 
 @wp.func
@@ -58,7 +60,5 @@ def point_buoyancy(
         world = origin + wp.quat_rotate(rotation, point)
         depth = surface_height(surface, wp.vec2(world[0], world[1])) - world[2]
         lift = buoyancy.density * buoyancy.gravity * buoyancy.slice_length * circle_segment_area(buoyancy.radius, depth)
-        force = lift * up_body
-        moment = wp.cross(point, force)
-        total += vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+        total += wrench_at(lift * up_body, point)
     model_wrench[boat] = total

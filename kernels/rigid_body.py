@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import warp as wp
 
-from .hull_forces import vec6
+from .spatial import vec6, wrench
 
 __all__ = [
     "mat66",
@@ -31,8 +31,11 @@ __all__ = [
     "STATUS_CAPSIZED",
     "STATUS_FLYING",
     "STATUS_SUNK",
+    "STATUS_BAD_INPUT",
     "rigid_body_coriolis",
     "added_mass_coriolis",
+    "damping_force",
+    "velocity_terms",
     "velocity_terms_jacobian",
     "solve6",
     "integrate_boats",
@@ -51,6 +54,9 @@ STATUS_FLYING = wp.constant(4)
 """The body origin rose above ``max_altitude``."""
 STATUS_SUNK = wp.constant(8)
 """The body origin sank below ``-max_depth``."""
+STATUS_BAD_INPUT = wp.constant(16)
+"""A force model was handed a NaN or infinite input (a command, the wind); set with STATUS_NONFINITE,
+so the boat is frozen at its last finite state until reset."""
 
 
 @wp.struct
@@ -58,13 +64,19 @@ class BodyParameters:
     """Per hull type: mass properties and Fossen coefficients, about the body origin."""
 
     mass: wp.array(dtype=float)
+    """[kg]"""
     center_of_mass: wp.array(dtype=wp.vec3)
+    """r_g, body frame [m]."""
     inertia_origin: wp.array(dtype=wp.mat33)
+    """Rigid-body inertia about the body origin [kg m^2]."""
     added_mass: wp.array(dtype=mat66)
+    """M_A [kg, kg m, kg m^2]."""
     mass_matrix: wp.array(dtype=mat66)
     """M_RB + M_A about the body origin."""
     linear_damping: wp.array(dtype=vec6)
+    """Diagonal of D_l [N s/m, N m s/rad]."""
     quadratic_damping: wp.array(dtype=vec6)
+    """Diagonal of D_q [N s^2/m^2, N m s^2/rad^2]."""
     astern_surge_factor: wp.array(dtype=float)
     """Surge damping multiplier while moving astern relative to the water."""
 
@@ -88,7 +100,7 @@ def rigid_body_coriolis(nu: vec6, mass: float, center_of_mass: wp.vec3, inertia_
     w_cross_v = wp.cross(w, v)
     force = mass * (w_cross_v + wp.cross(w, wp.cross(w, center_of_mass)))
     moment = wp.cross(w, inertia_origin * w) + mass * wp.cross(center_of_mass, w_cross_v)
-    return vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+    return wrench(force, moment)
 
 
 @wp.func
@@ -101,7 +113,26 @@ def added_mass_coriolis(nu_r: vec6, added_mass: mat66) -> vec6:
     w = wp.vec3(nu_r[3], nu_r[4], nu_r[5])
     force = wp.cross(w, a1)
     moment = wp.cross(v, a1) + wp.cross(w, a2)
-    return vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+    return wrench(force, moment)
+
+
+@wp.func
+def damping_force(nu_r: vec6, linear_damping: vec6, quadratic_damping: vec6) -> vec6:
+    """D_l nu_r + D_q |nu_r| nu_r (diagonal damping on the velocity relative to the water)."""
+    magnitude = vec6(wp.abs(nu_r[0]), wp.abs(nu_r[1]), wp.abs(nu_r[2]), wp.abs(nu_r[3]), wp.abs(nu_r[4]),
+                     wp.abs(nu_r[5]))
+    return wp.cw_mul(linear_damping, nu_r) + wp.cw_mul(quadratic_damping, wp.cw_mul(magnitude, nu_r))
+
+
+@wp.func
+def velocity_terms(
+    nu: vec6, nu_r: vec6, mass: float, r_g: wp.vec3, inertia_origin: wp.mat33, added_mass: mat66,
+    linear_damping: vec6, quadratic_damping: vec6,
+) -> vec6:
+    """c(nu) = c_RB(nu) + C_A(nu_r) nu_r + D_l nu_r + D_q |nu_r| nu_r: everything on the left of
+    M dnu/dt + c(nu) = tau but the acceleration."""
+    return (rigid_body_coriolis(nu, mass, r_g, inertia_origin) + added_mass_coriolis(nu_r, added_mass)
+            + damping_force(nu_r, linear_damping, quadratic_damping))
 
 
 @wp.func
@@ -186,10 +217,10 @@ def solve6(matrix: mat66, rhs: vec6) -> vec6:
 
 
 @wp.func
-def _rotate_wrench_to_body(rotation: wp.quat, wrench: vec6) -> vec6:
-    force = wp.quat_rotate_inv(rotation, wp.vec3(wrench[0], wrench[1], wrench[2]))
-    moment = wp.quat_rotate_inv(rotation, wp.vec3(wrench[3], wrench[4], wrench[5]))
-    return vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+def _rotate_wrench_to_body(rotation: wp.quat, world: vec6) -> vec6:
+    force = wp.quat_rotate_inv(rotation, wp.vec3(world[0], world[1], world[2]))
+    moment = wp.quat_rotate_inv(rotation, wp.vec3(world[3], world[4], world[5]))
+    return wrench(force, moment)
 
 
 @wp.func
@@ -219,7 +250,7 @@ def integrate_boats(
     velocity: wp.array(dtype=vec6),
     status: wp.array(dtype=int),
 ):
-    """One semi-implicit Euler substep of ``dt`` [s] per boat. ``hydro_wrench`` and ``model_wrench``
+    """One substep of ``dt`` [s] per boat (velocity terms linearly implicit at the midpoint, then the pose). ``hydro_wrench`` and ``model_wrench``
     (foils, propellers, point buoyancy) are body-frame wrenches about the origin. External wrenches:
     forces act at the centre of mass, moments are couples; ``wrench_world`` in the world frame,
     ``wrench_body`` in the body frame. A boat flagged non-finite is not integrated."""
@@ -236,7 +267,7 @@ def integrate_boats(
     external = _rotate_wrench_to_body(rotation, wrench_world[boat]) + wrench_body[boat]
     force = wp.vec3(external[0], external[1], external[2]) + wp.quat_rotate_inv(rotation, wp.vec3(0.0, 0.0, -mass * gravity))
     moment = wp.vec3(external[3], external[4], external[5]) + wp.cross(r_g, force)
-    tau = hydro_wrench[boat] + model_wrench[boat] + vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+    tau = hydro_wrench[boat] + model_wrench[boat] + wrench(force, moment)
 
     current = water_velocity[boat]
     nu_r = nu - vec6(current[0], current[1], current[2], 0.0, 0.0, 0.0)
@@ -246,15 +277,12 @@ def integrate_boats(
         astern = body.astern_surge_factor[kind]
         linear_damping[0] = astern * linear_damping[0]
         quadratic_damping[0] = astern * quadratic_damping[0]
-    damping = wp.cw_mul(linear_damping, nu_r)
-    damping += wp.cw_mul(quadratic_damping, wp.cw_mul(vec6(wp.abs(nu_r[0]), wp.abs(nu_r[1]), wp.abs(nu_r[2]),
-                         wp.abs(nu_r[3]), wp.abs(nu_r[4]), wp.abs(nu_r[5])), nu_r))
     inertia_origin = body.inertia_origin[kind]
     added_mass = body.added_mass[kind]
-    velocity_terms = rigid_body_coriolis(nu, mass, r_g, inertia_origin) + added_mass_coriolis(nu_r, added_mass) + damping
+    terms = velocity_terms(nu, nu_r, mass, r_g, inertia_origin, added_mass, linear_damping, quadratic_damping)
     jacobian = velocity_terms_jacobian(nu, nu_r, mass, r_g, inertia_origin, added_mass, linear_damping,
                                        quadratic_damping)
-    new_nu = nu + solve6(body.mass_matrix[kind] + (0.5 * dt) * jacobian, dt * (tau - velocity_terms))
+    new_nu = nu + solve6(body.mass_matrix[kind] + (0.5 * dt) * jacobian, dt * (tau - terms))
 
     linear = wp.vec3(new_nu[0], new_nu[1], new_nu[2])
     angular = wp.vec3(new_nu[3], new_nu[4], new_nu[5])
@@ -290,8 +318,10 @@ def reset_boats(
     status: wp.array(dtype=int),
     wrench_world: wp.array(dtype=vec6),
     wrench_body: wp.array(dtype=vec6),
+    water_velocity: wp.array(dtype=wp.vec3),
 ):
-    """Put boat ``boats[i]`` at the i-th new state, clear its flags and external wrenches."""
+    """Put boat ``boats[i]`` at the i-th new state; clear its flags, its external wrenches and the water
+    velocity seen at its old place (the next substep samples the new one)."""
     i = wp.tid()
     boat = boats[i]
     position[boat] = new_position[i]
@@ -300,6 +330,7 @@ def reset_boats(
     status[boat] = 0
     wrench_world[boat] = vec6()
     wrench_body[boat] = vec6()
+    water_velocity[boat] = wp.vec3()
 
 
 @wp.kernel(enable_backward=False)

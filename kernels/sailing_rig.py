@@ -4,43 +4,52 @@ rudder, windage and propeller, summed into the boat's model wrench (body frame, 
 Conventions (body frame FLU): the boom angle is positive with the boom to port; the rudder angle is
 positive with its trailing edge to port, which turns a boat going ahead to port (yaw rate > 0). The
 boom swings free within +-(sheet limit), driven by the sail's moment about the mast against the
-joint's damping, and stops dead at the limit. The rudder and the sheet limit move towards their
-commands at fixed rates within their ranges.
+joint's damping, and stops dead at the limit; the sail's flow includes the boom's own swing, which
+damps it aerodynamically. The rudder and the sheet limit move towards their commands at fixed rates
+within their ranges. A NaN or infinite command, or wind, flags the boat (BAD_INPUT and NONFINITE)
+instead of being clamped into a real value.
 """
 
 from __future__ import annotations
 
 import warp as wp
 
-from .foils import FoilTables, angle_of_attack, foil_coefficients
-from .hull_forces import vec6
+from .foils import FoilTables, foil_force
+from .rigid_body import STATUS_BAD_INPUT, STATUS_NONFINITE
+from .spatial import DEGREES, point_velocity, vec6, wrench_at
 from .wind import GustModel, wind_at_height
 
 __all__ = ["RigParameters", "sailing_rig", "reset_rig", "set_sheet"]
 
-DEGREES = wp.constant(57.29577951308232)
-
 
 @wp.struct
 class RigParameters:
-    """Geometry, actuators and the densities of a sailing rig (one boat type)."""
+    """Geometry, actuators and the densities of a sailing rig (one boat type); body frame, SI units."""
 
     mast_step: wp.vec3
-    """Foot of the (vertical) mast in the body frame [m]."""
+    """Foot of the (vertical) mast [m]; its x and y place the mast (the sail's height is ``sail_height``)."""
     sail_arm: float
     """Distance of the sail's centre of effort aft of the mast along the boom [m]."""
     sail_height: float
-    """Height of the sail's centre of effort in the body frame [m]."""
+    """Height of the sail's centre of effort [m]."""
     sail_area: float
+    """[m^2]"""
     keel_center: wp.vec3
+    """Centre of effort of the keel fin [m]."""
     keel_area: float
+    """[m^2]"""
     rudder_center: wp.vec3
+    """Centre of effort of the rudder (on its stock) [m]."""
     rudder_area: float
+    """[m^2]"""
     propeller_position: wp.vec3
+    """Where the thrust acts [m]."""
     thrust_per_level: float
     """[N] per propeller level ahead."""
     reverse_factor: float
+    """Thrust astern per level, as a fraction of ``thrust_per_level``."""
     max_level: int
+    """Largest propeller level either way."""
     rudder_limit: float
     """[rad]"""
     rudder_rate: float
@@ -54,37 +63,20 @@ class RigParameters:
     boom_damping: float
     """[N m s/rad]"""
     air_density: float
+    """[kg/m^3]"""
     water_density: float
+    """[kg/m^3]"""
     windage_area: float
     """Drag area (C_D A) of the mast, rigging and topsides in the apparent wind [m^2]."""
     windage_center: wp.vec3
-    """Where the windage acts, body frame [m]."""
-    sail_lift_limit_deg: float
-    """C_L is read at min(|alpha|, this) (180: the table as it is; the original V-C used 100)."""
-    foil_lift_limit_deg: float
-    """The same for keel and rudder (the original V-C used 90)."""
+    """Where the windage acts [m]."""
+    sail_lift_limit: float
+    """C_L is read at min(|alpha|, this) [rad] (pi: the table as it is; the original V-C used 100 deg)."""
+    foil_lift_limit: float
+    """The same for keel and rudder [rad] (the original V-C used 90 deg)."""
     original_tuning: int
     """1: the original V-C's other tuning (rudder force x 0.3, keel minus 0.6 of the sail's side force,
     sail force x 0.1 outside 5-160 degrees of attack)."""
-
-
-@wp.func
-def _tabulated_force(
-    flow: wp.vec3, chord: wp.vec3, span: wp.vec3, area: float, density: float,
-    lift: wp.array(dtype=float), drag: wp.array(dtype=float), lift_limit_deg: float,
-) -> wp.vec4:
-    """(force [N], angle of attack [rad]) of a foil; C_L read no further than ``lift_limit_deg``."""
-    section = flow - wp.dot(flow, span) * span
-    speed = wp.length(section)
-    if speed < 1.0e-6:
-        return wp.vec4()
-    direction = section / speed
-    alpha = angle_of_attack(direction, chord, span)
-    limited = wp.where(alpha < 0.0, -1.0, 1.0) * wp.min(wp.abs(alpha), lift_limit_deg / DEGREES)
-    c_lift = foil_coefficients(lift, drag, limited)[0]
-    c_drag = foil_coefficients(lift, drag, alpha)[1]
-    force = (0.5 * density * area * speed * speed) * (c_lift * wp.cross(span, direction) + c_drag * direction)
-    return wp.vec4(force[0], force[1], force[2], alpha)
 
 
 @wp.func
@@ -93,9 +85,8 @@ def _approach(value: float, target: float, max_step: float) -> float:
 
 
 @wp.func
-def _add(wrench: vec6, force: wp.vec3, at: wp.vec3) -> vec6:
-    moment = wp.cross(at, force)
-    return wrench + vec6(force[0], force[1], force[2], moment[0], moment[1], moment[2])
+def _force(force_and_angle: wp.vec4) -> wp.vec3:
+    return wp.vec3(force_and_angle[0], force_and_angle[1], force_and_angle[2])
 
 
 @wp.kernel(enable_backward=False)
@@ -117,14 +108,17 @@ def sailing_rig(
     boom_angle: wp.array(dtype=float),
     boom_rate: wp.array(dtype=float),
     model_wrench: wp.array(dtype=vec6),
+    status: wp.array(dtype=int),
 ):
     """One substep of ``dt`` [s]: actuators and boom move, and the sail, keel, rudder and propeller
     wrenches are added to ``model_wrench``. Commands: rudder and sheet angles [rad], propeller level."""
     boat = wp.tid()
+    if not (wp.isfinite(rudder_command[boat]) and wp.isfinite(sheet_command[boat])
+            and wp.isfinite(wind_velocity[boat])):
+        status[boat] = status[boat] | STATUS_BAD_INPUT | STATUS_NONFINITE
+        return
     rotation = orientation[boat]
     nu = velocity[boat]
-    linear = wp.vec3(nu[0], nu[1], nu[2])
-    angular = wp.vec3(nu[3], nu[4], nu[5])
     up = wp.vec3(0.0, 0.0, 1.0)
     down = wp.vec3(0.0, 0.0, -1.0)
 
@@ -137,14 +131,16 @@ def sailing_rig(
 
     # Sail: apparent wind at the centre of effort, which swings with the boom.
     boom = boom_angle[boat]
+    swing = boom_rate[boat]
     boom_direction = wp.vec3(-wp.cos(boom), wp.sin(boom), 0.0)
     sail_center = wp.vec3(rig.mast_step[0], rig.mast_step[1], rig.sail_height) + rig.sail_arm * boom_direction
     sail_world = position[boat] + wp.quat_rotate(rotation, sail_center)
     wind = wp.quat_rotate_inv(rotation, wind_at_height(wind_velocity[boat], sail_world[2], gusts))
-    sail_flow = wind - (linear + wp.cross(angular, sail_center))
-    sail = _tabulated_force(sail_flow, boom_direction, up, rig.sail_area, rig.air_density, tables.sail_lift,
-                            tables.sail_drag, rig.sail_lift_limit_deg)
-    sail_force = wp.vec3(sail[0], sail[1], sail[2])
+    swing_velocity = (rig.sail_arm * swing) * wp.vec3(wp.sin(boom), wp.cos(boom), 0.0)
+    sail_flow = wind - (point_velocity(nu, sail_center) + swing_velocity)
+    sail = foil_force(sail_flow, boom_direction, up, rig.sail_area, rig.air_density, tables.sail_lift,
+                      tables.sail_drag, rig.sail_lift_limit)
+    sail_force = _force(sail)
     if rig.original_tuning != 0:
         attack = wp.abs(sail[3]) * DEGREES
         if attack < 5.0 or attack > 160.0:
@@ -153,7 +149,7 @@ def sailing_rig(
     # Boom: free within the sheet limit, driven by the sail's moment about the mast. A positive boom
     # angle turns the boom clockwise seen from above (towards port, aft of the mast): about -z.
     about_mast = -wp.dot(wp.cross(rig.sail_arm * boom_direction, sail_force), up)
-    rate = (boom_rate[boat] * rig.boom_inertia + dt * about_mast) / (rig.boom_inertia + dt * rig.boom_damping)
+    rate = (swing * rig.boom_inertia + dt * about_mast) / (rig.boom_inertia + dt * rig.boom_damping)
     new_boom = boom + dt * rate
     if new_boom > limit:
         new_boom = limit
@@ -166,15 +162,13 @@ def sailing_rig(
 
     # Keel and rudder in the water (its orbital velocity at the boat, body frame).
     water = water_velocity[boat]
-    keel_flow = water - (linear + wp.cross(angular, rig.keel_center))
-    keel = _tabulated_force(keel_flow, wp.vec3(-1.0, 0.0, 0.0), down, rig.keel_area, rig.water_density,
-                            tables.foil_lift, tables.foil_drag, rig.foil_lift_limit_deg)
-    keel_force = wp.vec3(keel[0], keel[1], keel[2])
+    keel_force = _force(foil_force(water - point_velocity(nu, rig.keel_center), wp.vec3(-1.0, 0.0, 0.0), down,
+                                   rig.keel_area, rig.water_density, tables.foil_lift, tables.foil_drag,
+                                   rig.foil_lift_limit))
     rudder_chord = wp.vec3(-wp.cos(rudder), wp.sin(rudder), 0.0)
-    rudder_flow = water - (linear + wp.cross(angular, rig.rudder_center))
-    rudder_drag = _tabulated_force(rudder_flow, rudder_chord, down, rig.rudder_area, rig.water_density,
-                                   tables.foil_lift, tables.foil_drag, rig.foil_lift_limit_deg)
-    rudder_force = wp.vec3(rudder_drag[0], rudder_drag[1], rudder_drag[2])
+    rudder_force = _force(foil_force(water - point_velocity(nu, rig.rudder_center), rudder_chord, down,
+                                     rig.rudder_area, rig.water_density, tables.foil_lift, tables.foil_drag,
+                                     rig.foil_lift_limit))
     if rig.original_tuning != 0:
         rudder_force = 0.3 * rudder_force
         keel_force = keel_force - wp.vec3(0.0, 0.6 * sail_force[1], 0.0)
@@ -182,7 +176,7 @@ def sailing_rig(
     # Windage: the parasitic air drag of everything that is not sail.
     windage_world = position[boat] + wp.quat_rotate(rotation, rig.windage_center)
     windage_wind = wp.quat_rotate_inv(rotation, wind_at_height(wind_velocity[boat], windage_world[2], gusts))
-    windage_flow = windage_wind - (linear + wp.cross(angular, rig.windage_center))
+    windage_flow = windage_wind - point_velocity(nu, rig.windage_center)
     windage_force = (0.5 * rig.air_density * rig.windage_area * wp.length(windage_flow)) * windage_flow
 
     # Propeller: integer levels, weaker astern, along the body x axis.
@@ -191,13 +185,10 @@ def sailing_rig(
     if level < 0:
         thrust = thrust * rig.reverse_factor
 
-    total = model_wrench[boat]
-    total = _add(total, sail_force, sail_center)
-    total = _add(total, keel_force, rig.keel_center)
-    total = _add(total, rudder_force, rig.rudder_center)
-    total = _add(total, windage_force, rig.windage_center)
-    total = _add(total, wp.vec3(thrust, 0.0, 0.0), rig.propeller_position)
-    model_wrench[boat] = total
+    model_wrench[boat] = (model_wrench[boat] + wrench_at(sail_force, sail_center)
+                          + wrench_at(keel_force, rig.keel_center) + wrench_at(rudder_force, rig.rudder_center)
+                          + wrench_at(windage_force, rig.windage_center)
+                          + wrench_at(wp.vec3(thrust, 0.0, 0.0), rig.propeller_position))
 
 
 @wp.kernel(enable_backward=False)

@@ -6,27 +6,29 @@ Channels (columns of the (boats, 16) reading arrays):
     3-5   GNSS velocity, world [m/s]
     6-8   IMU specific force, body frame [m/s^2]: acceleration minus gravity (at rest: +g up)
     9-11  IMU angular rate, body frame [rad/s]
-    12    compass heading: yaw of the bow from +x (east) counter-clockwise [rad], (-pi, pi]
+    12    compass heading: yaw of the bow from +x (east) counter-clockwise [rad], [-pi, pi)
     13    apparent wind angle at the masthead: where the wind comes from, from the bow, positive to
-          port [rad], (-pi, pi]
+          port [rad], [-pi, pi)
     14    apparent wind speed at the masthead [m/s]
+          (13 and 14, as a masthead unit turning with the boat, see the wind's part in the deck plane:
+          its body-frame x and y)
     15    speed through the water: surge relative to the water's orbital velocity [m/s]
 
 A channel with period p steps refreshes its noisy reading every p steps (and holds it between);
 noise is Gaussian with the channel's standard deviation, plus, for the IMU, a bias drawn per boat at
-reset. Angles are wrapped after the noise.
+reset. Angles are wrapped after the noise. A reset reads the reset boats' every channel at once, so
+no reading of a previous episode survives it.
 """
 
 from __future__ import annotations
 
-import math
-
 import warp as wp
 
-from .hull_forces import vec6
+from .random_streams import IMU_BIAS, stream_state
+from .spatial import heading_of, point_velocity, vec6, wrap_angle
 from .wind import GustModel, wind_at_height
 
-__all__ = ["CHANNELS", "vec16", "SensorModel", "read_sensors", "advance_sensor_counter", "reset_sensors"]
+__all__ = ["CHANNELS", "vec16", "SensorModel", "read_sensors", "reset_sensors"]
 
 CHANNELS = wp.constant(16)
 vec16 = wp.types.vector(length=16, dtype=wp.float32)
@@ -34,30 +36,29 @@ IMU_FIRST = wp.constant(6)
 IMU_LAST = wp.constant(11)
 HEADING = wp.constant(12)
 WIND_ANGLE = wp.constant(13)
-PI = wp.constant(math.pi)
 
 
 @wp.struct
 class SensorModel:
     noise_std: wp.array(dtype=float)
-    """(16,) per channel."""
+    """(16,) per channel, in the channel's unit."""
     period: wp.array(dtype=int)
     """(16,) steps between refreshes of each channel (>= 1)."""
     masthead: wp.vec3
     """Vane and anemometer in the body frame [m]."""
     gravity: float
+    """[m/s^2]"""
     step: float
     """Duration of one step [s], for the acceleration."""
     seed: int
-
-
-@wp.func
-def _wrap(angle: float) -> float:
-    return angle - 2.0 * PI * wp.floor((angle + PI) / (2.0 * PI))
+    """Seed of the noise and bias streams."""
 
 
 @wp.kernel(enable_backward=False)
 def read_sensors(
+    boats: wp.array(dtype=int),
+    refresh_all: int,
+    stream: int,
     sensors: SensorModel,
     gusts: GustModel,
     counter: wp.array(dtype=int),
@@ -71,8 +72,10 @@ def read_sensors(
     truth: wp.array2d(dtype=float),
     measured: wp.array2d(dtype=float),
 ):
-    """One step's readings per boat; ``counter`` (1,) counts steps and is advanced by the caller."""
-    boat = wp.tid()
+    """Readings of ``boats[i]``: the truth, and the noisy channels due at step ``counter[0]`` (all of
+    them with ``refresh_all``), with noise from the random stream tagged ``stream``. The caller
+    advances ``counter`` once per step."""
+    boat = boats[wp.tid()]
     rotation = orientation[boat]
     nu = velocity[boat]
     linear = wp.vec3(nu[0], nu[1], nu[2])
@@ -81,14 +84,10 @@ def read_sensors(
     acceleration = (world_velocity - previous_velocity[boat]) / sensors.step
     previous_velocity[boat] = world_velocity
     specific_force = wp.quat_rotate_inv(rotation, acceleration + wp.vec3(0.0, 0.0, sensors.gravity))
-    x = rotation[0]
-    y = rotation[1]
-    z = rotation[2]
-    w = rotation[3]
-    heading = wp.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    heading = heading_of(rotation)
     masthead_world = position[boat] + wp.quat_rotate(rotation, sensors.masthead)
     wind = wp.quat_rotate_inv(rotation, wind_at_height(wind_velocity[boat], masthead_world[2], gusts))
-    apparent = wind - (linear + wp.cross(angular, sensors.masthead))
+    apparent = wind - point_velocity(nu, sensors.masthead)
     through_water = linear[0] - water_velocity[boat][0]
 
     p = position[boat]
@@ -97,22 +96,17 @@ def read_sensors(
                    heading, wp.atan2(-apparent[1], -apparent[0]), wp.sqrt(apparent[0] * apparent[0] + apparent[1] * apparent[1]),
                    through_water)
     bias = imu_bias[boat]
-    state = wp.rand_init(sensors.seed, (counter[0] * truth.shape[0] + boat) * CHANNELS)
+    state = stream_state(sensors.seed, stream, counter[0], boat)
     for c in range(CHANNELS):
         truth[boat, c] = values[c]
         noise = sensors.noise_std[c] * wp.randn(state)
-        if counter[0] % sensors.period[c] == 0:
+        if refresh_all != 0 or counter[0] % sensors.period[c] == 0:
             reading = values[c] + noise
             if c >= IMU_FIRST and c <= IMU_LAST:
                 reading += bias[c - IMU_FIRST]
             if c == HEADING or c == WIND_ANGLE:
-                reading = _wrap(reading)
+                reading = wrap_angle(reading)
             measured[boat, c] = reading
-
-
-@wp.kernel(enable_backward=False)
-def advance_sensor_counter(counter: wp.array(dtype=int)):
-    counter[0] = counter[0] + 1
 
 
 @wp.kernel(enable_backward=False)
@@ -129,7 +123,7 @@ def reset_sensors(
     """New IMU biases for the chosen boats, and their velocity as the last one seen (no false jolt)."""
     i = wp.tid()
     boat = boats[i]
-    state = wp.rand_init(seed ^ 0x5BD1E995, counter[0] * velocity.shape[0] + boat)  # apart from the noise streams
+    state = stream_state(seed, IMU_BIAS, counter[0], boat)
     imu_bias[boat] = vec6(bias_std[0] * wp.randn(state), bias_std[1] * wp.randn(state), bias_std[2] * wp.randn(state),
                           bias_std[3] * wp.randn(state), bias_std[4] * wp.randn(state), bias_std[5] * wp.randn(state))
     nu = velocity[boat]

@@ -6,15 +6,19 @@ deviation sigma, updated exactly over a step dt:
 
     U <- U_mean + (U - U_mean) e^(-dt/tau_U) + sigma_U sqrt(1 - e^(-2 dt/tau_U)) xi,   xi ~ N(0, 1)
 
-and likewise theta. The speed is the one at the reference height; at height z the wind is
-U (z / z_ref)^p (p = 0: the same at every height).
+and likewise theta. A speed the noise would drive below zero is held at zero (the air does not blow
+backwards), which lifts the mean a little when sigma_U is comparable to U_mean. The speed is the one at
+the reference height; at height z the wind is U (z / z_ref)^p (p = 0: the same at every height).
+Environment i's wind is read by boat i.
 """
 
 from __future__ import annotations
 
 import warp as wp
 
-__all__ = ["GustModel", "update_wind", "advance_wind_counter", "wind_at_height", "reset_wind"]
+from .random_streams import WIND_GUSTS, stream_state
+
+__all__ = ["GustModel", "update_wind", "wind_at_height", "wind_vector", "reset_wind"]
 
 MIN_PROFILE_HEIGHT = wp.constant(0.1)
 """Heights below this [m] use the wind there (the power law vanishes at the surface)."""
@@ -27,12 +31,15 @@ class GustModel:
     speed_noise: float
     """sigma_U sqrt(1 - e^(-2 dt / tau_U)) [m/s]."""
     direction_decay: float
+    """e^(-dt / tau_theta) over one substep."""
     direction_noise: float
-    """[rad]"""
+    """sigma_theta sqrt(1 - e^(-2 dt / tau_theta)) [rad]."""
     profile_exponent: float
+    """p of the height profile (dimensionless; 0: none)."""
     reference_height: float
     """[m]"""
     seed: int
+    """Seed of the gusts' random stream."""
 
 
 @wp.func
@@ -42,6 +49,12 @@ def wind_at_height(wind: wp.vec3, height: float, gusts: GustModel) -> wp.vec3:
         return wind
     ratio = wp.max(height, MIN_PROFILE_HEIGHT) / gusts.reference_height
     return wind * wp.pow(ratio, gusts.profile_exponent)
+
+
+@wp.func
+def wind_vector(speed: float, direction: float) -> wp.vec3:
+    """The horizontal wind [m/s, world] of ``speed`` [m/s] blowing towards ``direction`` [rad]."""
+    return wp.vec3(speed * wp.cos(direction), speed * wp.sin(direction), 0.0)
 
 
 @wp.kernel(enable_backward=False)
@@ -55,22 +68,18 @@ def update_wind(
     velocity: wp.array(dtype=wp.vec3),
 ):
     """One substep of the gust processes per environment; ``velocity`` gets the wind vector at the
-    reference height [m/s, world]. ``counter`` (1,) numbers the substeps for the random streams and is
-    advanced by ``advance_wind_counter``."""
+    reference height [m/s, world]. ``counter`` (1,) numbers the substeps for the random stream; the
+    caller advances it. A NaN mean stays NaN (``wp.max`` would hide it), for the rig to report."""
     env = wp.tid()
-    state = wp.rand_init(gusts.seed, (counter[0] * speed.shape[0] + env) * 2)
+    state = stream_state(gusts.seed, WIND_GUSTS, counter[0], env)
     new_speed = mean_speed[env] + (speed[env] - mean_speed[env]) * gusts.speed_decay + gusts.speed_noise * wp.randn(state)
-    new_speed = wp.max(new_speed, 0.0)
+    if new_speed < 0.0:
+        new_speed = 0.0
     new_direction = mean_direction[env] + (direction[env] - mean_direction[env]) * gusts.direction_decay
     new_direction += gusts.direction_noise * wp.randn(state)
     speed[env] = new_speed
     direction[env] = new_direction
-    velocity[env] = wp.vec3(new_speed * wp.cos(new_direction), new_speed * wp.sin(new_direction), 0.0)
-
-
-@wp.kernel(enable_backward=False)
-def advance_wind_counter(counter: wp.array(dtype=int)):
-    counter[0] = counter[0] + 1
+    velocity[env] = wind_vector(new_speed, new_direction)
 
 
 @wp.kernel(enable_backward=False)
@@ -91,5 +100,4 @@ def reset_wind(
     mean_direction[env] = new_mean_direction[i]
     speed[env] = new_mean_speed[i]
     direction[env] = new_mean_direction[i]
-    velocity[env] = wp.vec3(new_mean_speed[i] * wp.cos(new_mean_direction[i]),
-                            new_mean_speed[i] * wp.sin(new_mean_direction[i]), 0.0)
+    velocity[env] = wind_vector(new_mean_speed[i], new_mean_direction[i])

@@ -8,13 +8,20 @@ import numpy as np
 
 from .hull import Hull
 
-__all__ = ["BoatType", "skew"]
+__all__ = ["BoatType", "skew", "parallel_axis_term"]
 
 
 def skew(vector) -> np.ndarray:
     """S(a) with S(a) b = a x b."""
     x, y, z = np.asarray(vector, dtype=np.float64)
     return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+
+
+def parallel_axis_term(mass: float, offset) -> np.ndarray:
+    """m (|d|^2 I - d d^T) [kg m^2]: what moving a mass's inertia from its centre to a point at
+    ``offset`` [m] from the centre adds (parallel-axis theorem)."""
+    d = np.asarray(offset, dtype=np.float64)
+    return mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
 
 
 def _six_by_six(owner: str, name: str, value) -> np.ndarray:
@@ -112,8 +119,7 @@ class BoatType:
     @property
     def inertia_about_origin(self) -> np.ndarray:
         """(3, 3) inertia about the body origin [kg m^2] (parallel-axis theorem)."""
-        r = self.center_of_mass
-        return self.inertia + self.mass * (np.dot(r, r) * np.eye(3) - np.outer(r, r))
+        return self.inertia + parallel_axis_term(self.mass, self.center_of_mass)
 
     @property
     def rigid_body_mass_matrix(self) -> np.ndarray:

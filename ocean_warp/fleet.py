@@ -9,8 +9,9 @@ import numpy as np
 import warp as wp
 
 from .boat_type import BoatType
-from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, HullMeshes, vec6
+from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, HullMeshes
 from .kernels.rigid_body import (
+    STATUS_BAD_INPUT,
     STATUS_CAPSIZED,
     STATUS_FLYING,
     STATUS_NONFINITE,
@@ -20,7 +21,9 @@ from .kernels.rigid_body import (
     reset_boats,
     reset_swept_rates,
 )
+from .kernels.spatial import vec6
 from .torch_streams import ordered_with_torch
+from .validation import require_indices
 
 __all__ = ["Fleet", "FleetTensors", "BoatStatus"]
 
@@ -36,6 +39,9 @@ class BoatStatus:
     """Origin above ``SimulatorConfig.max_altitude``."""
     SUNK = int(STATUS_SUNK)
     """Origin below ``-SimulatorConfig.max_depth``."""
+    BAD_INPUT = int(STATUS_BAD_INPUT)
+    """A force model got a NaN or infinite input (e.g. a rudder command or the wind written from torch);
+    set together with NONFINITE, so the boat is frozen too."""
 
 
 class FleetTensors(NamedTuple):
@@ -132,7 +138,7 @@ class Fleet:
         ``orientation`` (K, 4) quaternions x y z w (default upright) and ``velocity`` (K, 6) Fossen nu
         (default at rest); their status flags, external wrenches and slamming history are cleared.
         Single rows broadcast to all K boats."""
-        indices = self._indices(boats)
+        indices = require_indices("Fleet.reset", "boats", boats, self.count)
         k = len(indices)
         position = _rows("position", position, k, 3)
         orientation = _rows("orientation", [0.0, 0.0, 0.0, 1.0] if orientation is None else orientation, k, 4)
@@ -150,23 +156,10 @@ class Fleet:
                 wp.array(orientation / norms[:, None], dtype=wp.quat, device=device),
                 wp.array(velocity, dtype=vec6, device=device)],
                 outputs=[self.position, self.orientation, self.velocity, self.status, self.wrench_world,
-                         self.wrench_body])
+                         self.wrench_body, self.water_velocity])
             wp.launch(reset_swept_rates, dim=(k, self.max_triangle_count), device=device,
                       inputs=[boats_wp, self.hull_type, self.meshes.triangle_count, self.triangle_offset,
                               float(NO_SWEPT_RATE)], outputs=[self.swept_rate])
-
-    def _indices(self, boats) -> np.ndarray:
-        if boats is None:
-            return np.arange(self.count, dtype=np.int32)
-        if hasattr(boats, "detach"):  # torch tensor
-            boats = boats.detach().cpu().numpy()
-        indices = np.asarray(boats).reshape(-1)
-        if indices.size and not np.issubdtype(indices.dtype, np.integer):
-            raise ValueError(f"Fleet.reset: boats must be integer indices, got dtype {indices.dtype}")
-        if indices.size and (indices.min() < 0 or indices.max() >= self.count):
-            raise ValueError(f"Fleet.reset: boat indices must lie in [0, {self.count - 1}], got "
-                             f"[{indices.min()}, {indices.max()}]")
-        return indices.astype(np.int32)
 
     # --- host copies, for inspection and tests --------------------------------------------------------
     def numpy(self) -> dict[str, np.ndarray]:

@@ -95,7 +95,6 @@ class Ocean:
         """The struct kernels take to read this ocean."""
         self.surface.fields = self.fields
         self.surface.inv_cell_size = 1.0 / self.config.cell_size
-        self.surface.resolution = n
         self.surface.index_mask = n - 1
         self.surface.choppiness = self.config.choppiness
         self.surface.inversion_iterations = self.config.inversion_iterations if self.config.choppiness > 0 else 0

@@ -7,8 +7,9 @@ import dataclasses
 import numpy as np
 import warp as wp
 
-from .kernels.hull_forces import vec6
-from .kernels.sensors import CHANNELS, SensorModel, advance_sensor_counter, read_sensors, reset_sensors
+from .kernels.random_streams import SENSOR_NOISE, SENSOR_RESET_NOISE, advance_counter
+from .kernels.sensors import CHANNELS, SensorModel, read_sensors, reset_sensors
+from .kernels.spatial import vec6
 from .torch_streams import ordered_with_torch
 from .validation import require_int_in_range, require_non_negative
 
@@ -91,12 +92,14 @@ class Sensors:
     """Readings of ``count`` boats: ``truth`` (noise-free) and ``readings`` (noisy, at their rates),
     both (count, 16), columns as :data:`CHANNEL_NAMES`. A Simulator model: it reads once per step."""
 
-    def __init__(self, config: SensorConfig | None, count: int, *, masthead, wind, device=None):
+    def __init__(self, config: SensorConfig | None, count: int, *, masthead, wind, step: float, gravity: float,
+                 device=None):
+        """``masthead``: vane and anemometer in the body frame [m]; ``wind``: the :class:`Wind` they
+        read; ``step``: the Simulator's dt [s] (sensors read once per step); ``gravity`` [m/s^2]."""
         self.config = config if config is not None else SensorConfig()
         self.device = wp.get_device(device)
         self.count = int(count)
         self.wind = wind
-        self.masthead = tuple(float(v) for v in masthead)
         self.truth = wp.zeros((self.count, CHANNELS), dtype=float, device=self.device)
         """(N, 16) exact readings of the last step."""
         self.readings = wp.zeros((self.count, CHANNELS), dtype=float, device=self.device)
@@ -104,14 +107,11 @@ class Sensors:
         self.imu_bias = wp.zeros(self.count, dtype=vec6, device=self.device)
         self._previous_velocity = wp.zeros(self.count, dtype=wp.vec3, device=self.device)
         self._counter = wp.zeros(1, dtype=int, device=self.device)
-        self._model = None
-
-    def bind(self, step: float, gravity: float) -> None:
-        """Prepare for steps of ``step`` [s] under ``gravity`` (done by the E-Boat simulator)."""
+        self._all_boats = wp.array(np.arange(self.count, dtype=np.int32), dtype=int, device=self.device)
         model = SensorModel()
         model.noise_std = wp.array(self.config.channel_noise(), dtype=float, device=self.device)
         model.period = wp.array(self.config.channel_periods(step), dtype=int, device=self.device)
-        model.masthead = wp.vec3(*self.masthead)
+        model.masthead = wp.vec3(*(float(v) for v in masthead))
         model.gravity = gravity
         model.step = step
         model.seed = self.config.seed
@@ -121,19 +121,24 @@ class Sensors:
         """Sensors read once per step, not per substep."""
 
     def step(self, simulator) -> None:
-        fleet = simulator.fleet
-        wp.launch(read_sensors, dim=self.count, device=self.device,
-                  inputs=[self._model, self.wind.gusts, self._counter, fleet.position, fleet.orientation,
-                          fleet.velocity, fleet.water_velocity, self.wind.velocity, self.imu_bias],
-                  outputs=[self._previous_velocity, self.truth, self.readings])
-        wp.launch(advance_sensor_counter, dim=1, inputs=[self._counter], device=self.device)
+        self._read(self._all_boats, False, SENSOR_NOISE, simulator.fleet)
+        wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
     def reset(self, boats: np.ndarray, fleet) -> None:
-        """New IMU biases for ``boats`` and no false acceleration on their next reading."""
+        """New IMU biases for ``boats``, no false acceleration on their next reading, and every channel
+        read at once from their new state."""
         c = self.config
         bias_std = vec6(*([c.accelerometer_bias_std] * 3 + [c.gyroscope_bias_std] * 3))
+        boats_wp = wp.array(np.asarray(boats, dtype=np.int32), dtype=int, device=self.device)
         with ordered_with_torch(self.device):
             wp.launch(reset_sensors, dim=len(boats), device=self.device,
-                      inputs=[wp.array(boats.astype(np.int32), dtype=int, device=self.device), bias_std, c.seed,
-                              self._counter, fleet.orientation, fleet.velocity],
+                      inputs=[boats_wp, bias_std, c.seed, self._counter, fleet.orientation, fleet.velocity],
                       outputs=[self.imu_bias, self._previous_velocity])
+            self._read(boats_wp, True, SENSOR_RESET_NOISE, fleet)
+
+    def _read(self, boats: wp.array, refresh_all: bool, stream: int, fleet) -> None:
+        wp.launch(read_sensors, dim=boats.shape[0], device=self.device,
+                  inputs=[boats, int(refresh_all), stream, self._model, self.wind.gusts, self._counter,
+                          fleet.position, fleet.orientation, fleet.velocity, fleet.water_velocity,
+                          self.wind.velocity, self.imu_bias],
+                  outputs=[self._previous_velocity, self.truth, self.readings])

@@ -1,10 +1,12 @@
-"""Checks shared by the config dataclasses: each raises ``ValueError`` naming the field, the value and
-what is allowed, so a bad config fails at construction and not as NaN inside a kernel."""
+"""Checks shared by the configs and the reset calls: each raises ``ValueError`` naming the field, the value
+and what is allowed, so bad input fails on the host and not as NaN inside a kernel."""
 
 from __future__ import annotations
 
 import math
 from numbers import Integral, Real
+
+import numpy as np
 
 __all__ = [
     "require_finite",
@@ -13,6 +15,8 @@ __all__ = [
     "require_in_range",
     "require_int_in_range",
     "require_choice",
+    "require_indices",
+    "require_per_item",
 ]
 
 
@@ -76,3 +80,33 @@ def require_choice(owner: str, field: str, value, enum_type):
     except ValueError:
         allowed = ", ".join(repr(member.value) for member in enum_type)
         raise ValueError(f"{_describe(owner, field)} must be one of {allowed}, got {value!r}") from None
+
+
+def require_indices(owner: str, field: str, indices, count: int) -> np.ndarray:
+    """(K,) int32 indices into ``count`` items from None (all), a sequence, a numpy array or a torch tensor;
+    raise ``ValueError`` on non-integers or indices outside [0, count)."""
+    if indices is None:
+        return np.arange(count, dtype=np.int32)
+    if hasattr(indices, "detach"):  # a torch tensor
+        indices = indices.detach().cpu().numpy()
+    array = np.asarray(indices).reshape(-1)
+    if array.size and not np.issubdtype(array.dtype, np.integer):
+        raise ValueError(f"{_describe(owner, field)} must be integer indices, got dtype {array.dtype}")
+    if array.size and (array.min() < 0 or array.max() >= count):
+        raise ValueError(f"{_describe(owner, field)}: indices must lie in [0, {count - 1}], got "
+                         f"[{array.min()}, {array.max()}]")
+    return array.astype(np.int32)
+
+
+def require_per_item(owner: str, field: str, value, count: int) -> np.ndarray:
+    """(count,) float64 from one finite number or ``count`` of them (numpy, list or torch); else raise."""
+    if hasattr(value, "detach"):
+        value = value.detach().cpu().numpy()
+    try:
+        array = np.broadcast_to(np.asarray(value, dtype=np.float64), (count,))
+    except (TypeError, ValueError):
+        raise ValueError(f"{_describe(owner, field)} must be one number or {count} of them, got "
+                         f"shape {np.shape(value)}") from None
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{_describe(owner, field)} holds NaN or infinite values")
+    return array

@@ -8,9 +8,17 @@ import math
 import numpy as np
 import warp as wp
 
-from .kernels.wind import GustModel, advance_wind_counter, reset_wind, update_wind
+from .kernels.random_streams import advance_counter
+from .kernels.wind import GustModel, reset_wind, update_wind
 from .torch_streams import ordered_with_torch
-from .validation import require_finite, require_int_in_range, require_non_negative, require_positive
+from .validation import (
+    require_finite,
+    require_indices,
+    require_int_in_range,
+    require_non_negative,
+    require_per_item,
+    require_positive,
+)
 
 __all__ = ["WindConfig", "Wind"]
 
@@ -72,7 +80,8 @@ class Wind:
     """Device arrays of the wind over ``count`` environments and the model that updates them every
     substep (pass it among a Simulator's models, before the models that read it)."""
 
-    def __init__(self, config: WindConfig | None = None, count: int = 1, *, device=None):
+    def __init__(self, config: WindConfig | None = None, count: int = 1, *, substep: float, device=None):
+        """``count`` environments updated every ``substep`` [s] (the Simulator's dt / substeps)."""
         self.config = config if config is not None else WindConfig()
         self.device = wp.get_device(device)
         self.count = int(count)
@@ -90,31 +99,22 @@ class Wind:
         self.velocity = wp.array(initial.astype(np.float32), dtype=wp.vec3, device=self.device)
         """(N,) wind vector at the reference height, world frame [m/s]."""
         self._counter = wp.zeros(1, dtype=int, device=self.device)
-        self.gusts = self.config.gust_model(1.0)
-
-    def bind(self, substep: float) -> None:
-        """Prepare the gust model for substeps of ``substep`` [s] (done by the E-Boat simulator)."""
-        self.gusts = self.config.gust_model(substep)
+        self.gusts = self.config.gust_model(require_positive("Wind", "substep", substep, unit=" [s]"))
 
     def substep(self, simulator) -> None:
         wp.launch(update_wind, dim=self.count, device=self.device,
                   inputs=[self.gusts, self._counter, self.mean_speed, self.mean_direction],
                   outputs=[self.speed, self.direction, self.velocity])
-        wp.launch(advance_wind_counter, dim=1, inputs=[self._counter], device=self.device)
+        wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
     def set(self, envs=None, *, speed, direction) -> None:
         """Set the mean wind of the chosen environments (None: all) and restart their gusts from it:
         ``speed`` [m/s] and ``direction`` [rad] per environment or one value for all."""
-        indices = np.arange(self.count) if envs is None else np.asarray(
-            envs.detach().cpu().numpy() if hasattr(envs, "detach") else envs).reshape(-1)
-        if indices.size and (indices.min() < 0 or indices.max() >= self.count):
-            raise ValueError(f"Wind.set: environment indices must lie in [0, {self.count - 1}]")
-        speeds = np.broadcast_to(np.asarray(speed, dtype=np.float64), indices.shape)
-        directions = np.broadcast_to(np.asarray(direction, dtype=np.float64), indices.shape)
-        if not (np.all(np.isfinite(speeds)) and np.all(speeds >= 0)):
-            raise ValueError("Wind.set: speed must be finite and >= 0 [m/s]")
-        if not np.all(np.isfinite(directions)):
-            raise ValueError("Wind.set: direction must be finite [rad]")
+        indices = require_indices("Wind.set", "envs", envs, self.count)
+        speeds = require_per_item("Wind.set", "speed", speed, len(indices))
+        directions = require_per_item("Wind.set", "direction", direction, len(indices))
+        if np.any(speeds < 0):
+            raise ValueError("Wind.set.speed must be >= 0 [m/s]")
         if not indices.size:
             return
         device = self.device

@@ -52,7 +52,7 @@ def test_heave_natural_period_with_added_mass(device, rng):
     assert len(crossings) >= 3
     measured = np.mean(np.diff(crossings))
     expected = 2 * math.pi * math.sqrt((mass + added) / (RHO * G * length * beam))
-    assert measured == pytest.approx(expected, rel=0.05)
+    assert measured == pytest.approx(expected, rel=2e-3)
 
 
 def heave_energy(heights, rates, equilibrium, mass, added, waterplane):
@@ -121,7 +121,7 @@ def free_body_run(device, boat, nu0, steps, dt):
 
 def test_torque_free_body_conserves_kirchhoff_energy(device, rng):
     """With added mass and an off-centre centre of mass, 1/2 nu^T (M_RB + M_A) nu is an invariant of
-    Kirchhoff's equations: it tests the gyroscopic, coupling and Munk (added-mass Coriolis) terms."""
+    Kirchhoff's equations (for any symmetric M: the impulses below check M itself)."""
     hull = ow.Hull.ellipsoid(*rng.uniform(0.5, 2.0, size=3), subdivisions=1)
     mass = rng.uniform(50, 500)
     boat = ow.BoatType(hull=hull, mass=mass, center_of_mass=rng.uniform(-0.2, 0.2, size=3),
@@ -135,17 +135,32 @@ def test_torque_free_body_conserves_kirchhoff_energy(device, rng):
     assert np.abs(states[-1]["velocity"][0] - nu0).max() > 0.05, "the motion should not be trivial"
 
 
-def test_torque_free_body_conserves_angular_momentum(device, rng):
+def test_torque_free_body_conserves_kirchhoff_impulses(device, rng):
+    """Kirchhoff's equations keep the world-frame impulses of a free body constant: P = R (M nu)_v and,
+    about a fixed point (here the start), Pi = R (M nu)_w + x x P (x the body origin from that point). With added mass and an off-centre
+    centre of mass this checks the coupling blocks of M_RB and the velocity terms, which the energy
+    (invariant for any symmetric M) cannot."""
     hull = ow.Hull.ellipsoid(*rng.uniform(0.5, 2.0, size=3), subdivisions=1)
-    a, b, c = rng.uniform(0.3, 2.0, size=3)  # a solid ellipsoid's principal moments, m (b^2 + c^2) / 5 ...
-    inertia = 100.0 / 5 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
-    turn = rotation_matrix(random_rotations(rng, 1, math.pi)[0])
-    boat = ow.BoatType(hull=hull, mass=100.0, inertia=turn @ inertia @ turn.T)
-    nu0 = np.concatenate([np.zeros(3), rng.uniform(-2, 2, 3)])
+    mass = rng.uniform(50, 500)
+    boat = ow.BoatType(hull=hull, mass=mass, center_of_mass=rng.uniform(-0.3, 0.3, size=3),
+                       added_mass=np.concatenate([rng.uniform(0.1, 1.0, 3) * mass, rng.uniform(0.1, 1.0, 3) * mass]))
+    nu0 = np.concatenate([rng.uniform(-1, 1, 3), rng.uniform(-2, 2, 3)])
     states = free_body_run(device, boat, nu0, 2000, dt=0.0025)
-    momentum = np.array([rotation_matrix(s["orientation"][0]) @ (boat.inertia @ s["velocity"][0][3:]) for s in states])
-    initial = boat.inertia @ nu0[3:]
-    assert np.abs(momentum - initial).max() < 0.01 * np.linalg.norm(initial)
+
+    def impulses(state):
+        turn = rotation_matrix(state["orientation"][0])
+        body = boat.mass_matrix @ state["velocity"][0].astype(np.float64)
+        linear = turn @ body[:3]
+        return np.concatenate([linear, turn @ body[3:] + np.cross(np.subtract(state["position"][0], [0.0, 0.0, 100.0]), linear)])
+
+    start = impulses({"orientation": [[0.0, 0.0, 0.0, 1.0]], "velocity": [nu0], "position": [[0.0, 0.0, 100.0]]})
+    drift = np.array([impulses(s) - start for s in states])
+    # The pose follows the new velocity (first order): over these 5 s the linear impulse drifts by up
+    # to 0.2 % and the angular one by up to 4 % (40 random bodies), halving with the step. A sign error
+    # in the coupling blocks moves them by 60 % to 400 %.
+    assert np.abs(drift[:, :3]).max() < 1e-2 * np.linalg.norm(start[:3])
+    assert np.abs(drift[:, 3:]).max() < 0.1 * np.linalg.norm(start[3:])
+    assert np.abs(states[-1]["velocity"][0] - nu0).max() > 0.05, "the motion should not be trivial"
 
 
 def test_external_force_accelerates_the_effective_mass(device, rng):
@@ -179,9 +194,8 @@ def numpy_velocity_terms(nu, nu_r, boat):
 def test_velocity_terms_and_their_jacobian_match_numpy(device, rng):
     import warp as wp
 
-    from ocean_warp.kernels.hull_forces import vec6
-    from ocean_warp.kernels.rigid_body import (added_mass_coriolis, mat66, rigid_body_coriolis,
-                                               velocity_terms_jacobian)
+    from ocean_warp.kernels.spatial import vec6
+    from ocean_warp.kernels.rigid_body import mat66, velocity_terms, velocity_terms_jacobian
 
     @wp.kernel
     def evaluate(nu: wp.array(dtype=vec6), current: wp.array(dtype=wp.vec3), mass: float, r_g: wp.vec3,
@@ -190,10 +204,7 @@ def test_velocity_terms_and_their_jacobian_match_numpy(device, rng):
         i = wp.tid()
         c = current[i]
         nu_r = nu[i] - vec6(c[0], c[1], c[2], 0.0, 0.0, 0.0)
-        damping = wp.cw_mul(lin, nu_r) + wp.cw_mul(quad, wp.cw_mul(
-            vec6(wp.abs(nu_r[0]), wp.abs(nu_r[1]), wp.abs(nu_r[2]), wp.abs(nu_r[3]), wp.abs(nu_r[4]),
-                 wp.abs(nu_r[5])), nu_r))
-        terms[i] = rigid_body_coriolis(nu[i], mass, r_g, inertia) + added_mass_coriolis(nu_r, added) + damping
+        terms[i] = velocity_terms(nu[i], nu_r, mass, r_g, inertia, added, lin, quad)
         jacobians[i] = velocity_terms_jacobian(nu[i], nu_r, mass, r_g, inertia, added, lin, quad)
 
     symmetric = rng.normal(size=(6, 6))
@@ -227,8 +238,9 @@ def test_velocity_terms_and_their_jacobian_match_numpy(device, rng):
 def test_surge_damping_is_stronger_astern(device, rng):
     """The original twin's damping is 1.3 times larger going astern: decelerations ahead and astern
     from the same speed differ by exactly that factor."""
-    boat = ow.BoatType(hull=ow.Hull.box(2.0, 1.0, 0.5), mass=100.0, linear_damping=[rng.uniform(5, 50), 0, 0, 0, 0, 0],
-                       quadratic_damping=[rng.uniform(5, 50), 0, 0, 0, 0, 0], astern_surge_factor=1.3)
+    linear, quadratic = rng.uniform(5, 50), rng.uniform(5, 50)
+    boat = ow.BoatType(hull=ow.Hull.box(2.0, 1.0, 0.5), mass=100.0, linear_damping=[linear, 0, 0, 0, 0, 0],
+                       quadratic_damping=[quadratic, 0, 0, 0, 0, 0], astern_surge_factor=1.3)
     fleet = ow.Fleet(boat, 2, device=device)
     speed = rng.uniform(0.5, 2.0)
     fleet.reset(position=[[0.0, 0.0, 100.0], [0.0, 10.0, 100.0]], velocity=[[speed, 0, 0, 0, 0, 0], [-speed, 0, 0, 0, 0, 0]])
@@ -238,3 +250,5 @@ def test_surge_damping_is_stronger_astern(device, rng):
     simulator.step()
     change = fleet.numpy()["velocity"][:, 0] - [speed, -speed]
     assert -change[1] / change[0] == pytest.approx(1.3, rel=1e-3)
+    # Ahead, m du/dt = -(d_l u + d_q u^2): over 1 ms the speed changes by that times dt / m (to 1e-2).
+    assert change[0] == pytest.approx(-1e-3 * (linear * speed + quadratic * speed**2) / boat.mass, rel=1e-2)

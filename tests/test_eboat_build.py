@@ -7,9 +7,12 @@ import pytest
 
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator
+from ocean_warp.eboat.hull_shape import HullShape
 from ocean_warp.eboat.mass_properties import eboat_mass_properties
 from ocean_warp.eboat.sheet import LINKS, Version
 from ocean_warp.frames import roll_pitch_yaw
+from tests import reference_hull
+from tests.hull_setups import rotation_matrix
 
 # The sheet's link table, typed in again: mass [kg] of every link of eboat4 (V-B, V-C).
 SHEET_MASSES = {"hull": 83.69, "keel": 40.04, "mast": 12.5, "boom": 2.41, "sail": 2.22, "rudder": 1.60, "deck": 4.66,
@@ -50,15 +53,21 @@ def test_composite_inertia_is_the_parallel_axis_sum():
         expected[1, 2] -= mass * d[1] * d[2]
     expected[1, 0], expected[2, 0], expected[2, 1] = expected[0, 1], expected[0, 2], expected[1, 2]
     np.testing.assert_allclose(composite.inertia, expected, rtol=1e-10, atol=1e-10)
-    # The mast alone, a 12.5 kg cylinder 3.55 m long of radius 0.05 m: m (3 r^2 + L^2) / 12 about its middle.
-    mast = next(link for link in LINKS if link.name == "mast")
-    assert link_inertia(mast)[0, 0] == pytest.approx(12.5 * (3 * 0.05**2 + 3.55**2) / 12)
+    # The links' own inertias, from the sheet's figures and shapes, written out here.
+    by_name = {link.name: link_inertia(link) for link in LINKS}
+    np.testing.assert_allclose(by_name["hull"], [[7.794, 0, 1.267], [0, 42.817, 0], [1.267, 0, 47.147]])
+    mast_across = 12.5 * (3 * 0.05**2 + 3.55**2) / 12  # cylinder r 0.05 m, 3.55 m long, about its middle
+    np.testing.assert_allclose(by_name["mast"], np.diag([mast_across, mast_across, 12.5 * 0.05**2 / 2]))
+    np.testing.assert_allclose(np.diag(by_name["boom"])[1:], [2.41 * 1.8**2 / 12] * 2)  # rod 1.8 m along x
+    np.testing.assert_allclose(by_name["rudder"], 1.60 / 12 * np.diag([0.015**2 + 0.608**2, 0.189**2 + 0.608**2,
+                                                                         0.189**2 + 0.015**2]))  # box
 
 
 def test_boat_type_carries_the_composite_and_the_sheet_hydrodynamics():
     eboat = EBoat()
     composite = eboat_mass_properties(Version.C)
     assert eboat.boat_type.mass == pytest.approx(composite.mass)
+    np.testing.assert_allclose(eboat.boat_type.center_of_mass, composite.center_of_mass)
     np.testing.assert_allclose(eboat.boat_type.inertia, composite.inertia)
     np.testing.assert_allclose(np.diag(eboat.boat_type.added_mass), [0, 124, 148, 0, 0, 0])  # sheet: X, Y, Z added mass
     points = EBoat(EBoatConfig(version="V-A", hydrostatics="points")).boat_type
@@ -79,20 +88,68 @@ def test_hull_is_a_sailboat_hull_within_the_sheets_box():
     assert hull.volume < 0.7 * extents.prod()
 
 
+def mesh_equilibrium_height(eboat, turn):
+    """Height [m] of the base frame at which the numpy reference's buoyancy on the hull, held at the
+    orientation ``turn``, carries the boat's weight in still water (bisection)."""
+    hydro = eboat.hydrodynamics.without_drag()
+    vertices = eboat.hull.vertices
+    weight = eboat.boat_type.mass * hydro.gravity
+
+    def buoyancy(height):
+        depth = -((vertices @ turn.T)[:, 2] + height)
+        wrench = reference_hull.hull_wrench(vertices, eboat.hull.triangles, depth, np.zeros_like(vertices), np.zeros(6),
+                                            hydro, np.zeros(3))
+        return (turn @ wrench[:3])[2]
+
+    low, high = -0.3, 0.3
+    for _ in range(30):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if buoyancy(middle) > weight else (low, middle)
+    return 0.5 * (low + high)
+
+
+def points_equilibrium_depth(eboat):
+    """Depth [m] of the four points when each carries a quarter of the weight: rho g (L/2) S(R, h) = m g / 4,
+    with the circle segment S written out here."""
+    radius, length = eboat.vrx.hull_radius, eboat.vrx.hull_length
+    target = eboat.boat_type.mass / (2.0 * eboat.config.water_density * length)
+    low, high = 0.0, radius
+    for _ in range(50):
+        h = 0.5 * (low + high)
+        segment = radius**2 * math.acos((radius - h) / radius) - (radius - h) * math.sqrt(2 * radius * h - h * h)
+        low, high = (low, h) if segment > target else (h, high)
+    return 0.5 * (low + high)
+
+
+def test_rest_height_is_where_the_reference_buoyancy_carries_the_weight():
+    eboat = EBoat()
+    assert eboat.rest_height() == pytest.approx(mesh_equilibrium_height(eboat, np.eye(3)), abs=2e-4)
+
+
 @pytest.mark.parametrize("hydrostatics", ["mesh", "points"])
-def test_floats_upright_at_a_sensible_draft(device, hydrostatics):
-    sim = EBoatSimulator(2, eboat=EBoat(EBoatConfig(hydrostatics=hydrostatics)), wind=ow.WindConfig(speed=0.0),
-                         device=device)
+def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics):
+    eboat = EBoat(EBoatConfig(hydrostatics=hydrostatics))
+    sim = EBoatSimulator(2, eboat=eboat, wind=ow.WindConfig(speed=0.0), device=device)
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.1]])
-    for _ in range(400):
+    heights = []
+    for step in range(500):
         sim.step()
+        if step >= 400:  # average the last few centimetres of bobbing out
+            heights.append(sim.fleet.numpy()["position"][:, 2].copy())
+    height = np.mean(heights, axis=0)
     state = sim.fleet.numpy()
     roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
     assert np.all(np.abs(np.degrees(roll)) < 1.0) and np.all(np.abs(np.degrees(pitch)) < 2.0)
-    # The source's base frame sits at the waterline: the hull floats within a few centimetres of it (the
-    # original four points, set at that height, sink 9 cm to carry the boat).
-    assert np.all(np.abs(state["position"][:, 2]) < (0.08 if hydrostatics == "mesh" else 0.12))
     assert np.all(state["status"] == 0)
+    turn = rotation_matrix(state["orientation"][0])
+    if hydrostatics == "mesh":
+        # Archimedes by an independent implementation; about 5 cm above the source's waterline.
+        np.testing.assert_allclose(height, mesh_equilibrium_height(eboat, turn), atol=1e-3)
+    else:
+        # The points' mean depth (the trim tilts them about x = 0) is the analytic one, to the segment's curvature.
+        points = np.array(eboat.vrx.points)
+        mean_depth = -(height[0] + (points @ turn.T)[:, 2]).mean()
+        assert mean_depth == pytest.approx(points_equilibrium_depth(eboat), abs=1e-3)
 
 
 def test_bad_eboat_config_is_refused():
@@ -102,4 +159,19 @@ def test_bad_eboat_config_is_refused():
         EBoatConfig(hydrostatics="strips")
     with pytest.raises(ValueError, match="EBoatConfig.water_density must be > 0"):
         EBoatConfig(water_density=-1.0)
-    assert math.isfinite(EBoat().rest_height())
+    with pytest.raises(ValueError, match="HullShape.bow_x must lie forward of stern_x"):
+        HullShape(bow_x=-1.5)
+    with pytest.raises(ValueError, match=r"HullShape.widest_at must be in \[0.05, 0.95\]"):
+        HullShape(widest_at=1.0)
+
+
+def test_bad_eboat_resets_are_refused(device):
+    sim = EBoatSimulator(3, device=device)
+    with pytest.raises(ValueError, match="EBoatSimulator.reset.sheet holds NaN"):
+        sim.reset(sheet=[0.2, np.nan, 0.3])
+    with pytest.raises(ValueError, match="EBoatSimulator.reset.heading must be one number or 3"):
+        sim.reset(heading=[0.1, 0.2])
+    with pytest.raises(ValueError, match=r"EBoatSimulator.reset.boats: indices must lie in \[0, 2\]"):
+        sim.reset([3])
+    with pytest.raises(ValueError, match="Wind.set.speed must be >= 0"):
+        sim.reset(wind_speed=-2.0)

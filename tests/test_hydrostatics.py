@@ -7,7 +7,8 @@ import pytest
 import warp as wp
 
 import ocean_warp as ow
-from ocean_warp.kernels.hull_forces import WaterModel, _submerged_area, triangle_wrench, vec6
+from ocean_warp.kernels.hull_forces import WaterModel, _submerged_area, triangle_wrench
+from ocean_warp.kernels.spatial import vec6
 from ocean_warp.kernels.point_buoyancy import circle_segment_area
 from tests.hull_setups import calm_ocean, quaternion_about, random_rotations, rotation_matrix
 
@@ -75,9 +76,12 @@ def test_box_restoring_moment_is_rho_g_volume_gm_sin_angle(device, rng, axis):
     metacentric_radius = (beam**2 if axis == "roll" else length**2) / (12 * draft)
     gm = 0.5 * draft + metacentric_radius - 0.5 * height  # KB + BM - KG, centre of mass at the box's centre
     component = 3 if axis == "roll" else 4
-    expected = -RHO * G * volume * gm * np.sin(angles)
-    np.testing.assert_allclose(wrenches[:, component], expected, rtol=0.03)
-    np.testing.assert_allclose(wrenches[:, 2] / (RHO * G * volume), np.cos(angles), rtol=2e-3)
+    # A wall-sided hull, exactly at any angle that keeps its sides wall-sided: GZ = sin(phi) (GM + BM/2 tan^2(phi)).
+    righting_arm = np.sin(angles) * (gm + 0.5 * metacentric_radius * np.tan(angles) ** 2)
+    np.testing.assert_allclose(wrenches[:, component], -RHO * G * volume * righting_arm, rtol=1e-3)
+    # And the force is rho g V straight up: world z in the body frame.
+    up_in_body = np.array([rotation_matrix(q).T @ [0.0, 0.0, 1.0] for q in orientations])
+    np.testing.assert_allclose(wrenches[:, :3], RHO * G * volume * up_in_body, rtol=0, atol=1e-4 * RHO * G * volume)
 
 
 def test_half_submerged_sphere_force_converges_to_archimedes(device, rng):
@@ -97,13 +101,14 @@ def test_half_submerged_sphere_force_converges_to_archimedes(device, rng):
 
 
 def test_fully_submerged_dry_and_capsized_bodies(device, rng):
-    hull = ow.Hull.ellipsoid(*rng.uniform(0.4, 1.5, size=3), subdivisions=2)
+    centred = ow.Hull.ellipsoid(*rng.uniform(0.4, 1.5, size=3), subdivisions=2)
+    # Off the origin, so that the moment of the buoyancy about it is not zero.
+    hull = ow.Hull(centred.vertices + rng.uniform(-0.5, 0.5, size=3), centred.triangles)
     boat = ow.BoatType.floating_solid(hull)
     orientations = random_rotations(rng, 3, math.pi)
     depth = rng.uniform(3.0, 10.0)
     positions = [[0.0, 0.0, -depth], [0.0, 10.0, depth], [0.0, 20.0, 0.0]]
     wrenches = static_wrenches(device, boat, positions, orientations)
-    assert np.all(np.isfinite(wrenches))
 
     up_submerged = rotation_matrix(orientations[0]).T @ np.array([0.0, 0.0, 1.0])
     buoyancy = RHO * G * hull.volume * up_submerged
@@ -113,12 +118,20 @@ def test_fully_submerged_dry_and_capsized_bodies(device, rng):
                                atol=1e-4 * np.linalg.norm(buoyancy) * hull.length)
     np.testing.assert_array_equal(wrenches[1], np.zeros(6))  # in the air
 
-    # Upside down and half in: still Archimedes (half the volume, by symmetry of the ellipsoid).
-    capsized = static_wrenches(device, boat, [[0.0, 0.0, 0.0]], [quaternion_about([1, 0, 0], math.pi)])[0]
-    assert capsized[2] == pytest.approx(-0.5 * RHO * G * hull.volume, rel=0.02)
+    # Turned any way with its centre on the surface: the centrally symmetric mesh is cut into halves
+    # of equal volume, so the force is half the buoyancy, straight up.
+    centre = rotation_matrix(orientations[2]) @ hull.center_of_volume
+    half = static_wrenches(device, boat, [[0.0, 0.0, 0.0] - centre], orientations[2:])[0]
+    up_half = rotation_matrix(orientations[2]).T @ np.array([0.0, 0.0, 1.0])
+    np.testing.assert_allclose(half[:3], 0.5 * RHO * G * hull.volume * up_half, rtol=0,
+                               atol=1e-4 * RHO * G * hull.volume)
+    # Upside down and half in: the same.
+    capsized = static_wrenches(device, boat, [-hull.center_of_volume * [1, -1, -1]],
+                               [quaternion_about([1, 0, 0], math.pi)])[0]
+    assert capsized[2] == pytest.approx(-0.5 * RHO * G * hull.volume, rel=1e-4)
 
 
-def test_waterline_through_vertices_gives_finite_forces(device, rng):
+def test_waterline_through_vertices_gives_finite_forces(device):
     length, beam, height = 2.0, 1.0, 0.5
     boat = ow.BoatType(hull=ow.Hull.box(length, beam, height), mass=200.0)
     tiny = 1e-7
@@ -126,10 +139,13 @@ def test_waterline_through_vertices_gives_finite_forces(device, rng):
     diagonal = quaternion_about([1.0, 0.0, 0.0], math.atan2(height, beam))  # a bottom edge exactly at the surface
     orientations = [[0, 0, 0, 1], [0, 0, 0, 1], [0, 0, 0, 1], diagonal]
     wrenches = static_wrenches(device, boat, positions, orientations)
-    assert np.all(np.isfinite(wrenches))
     np.testing.assert_array_equal(wrenches[0], np.zeros(6))  # bottom exactly on the surface: depth 0 is dry
     assert 0.0 <= wrenches[1, 2] < RHO * G * length * beam * 10 * tiny
     assert wrenches[2, 2] == pytest.approx(0.5 * RHO * G * length * beam * height, rel=1e-5)
+    # Turned onto a bottom edge with its centre on the surface: half the volume, straight up.
+    up_diagonal = rotation_matrix(diagonal).T @ np.array([0.0, 0.0, 1.0])
+    np.testing.assert_allclose(wrenches[3, :3], 0.5 * RHO * G * length * beam * height * up_diagonal, rtol=0,
+                               atol=1e-5 * RHO * G * length * beam * height)
 
 
 @wp.kernel

@@ -8,6 +8,7 @@ import numpy as np
 import warp as wp
 
 from ..kernels.autopilot import HeadingGains, hold_heading
+from ..validation import require_per_item
 
 __all__ = ["HeadingAutopilot"]
 
@@ -32,8 +33,8 @@ class HeadingAutopilot:
 
     def set_target(self, headings) -> None:
         """Headings [rad] for every boat (or one for all); clears the integrators."""
-        values = np.broadcast_to(np.asarray(headings, dtype=np.float32), (self.simulator.count,))
-        self.target.assign(values)
+        values = require_per_item("HeadingAutopilot.set_target", "headings", headings, self.simulator.count)
+        self.target.assign(values.astype(np.float32))
         self._integral.zero_()
 
     def steer(self) -> None:

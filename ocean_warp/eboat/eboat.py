@@ -146,8 +146,8 @@ class EBoat:
         rig.windage_area = WINDAGE_AREA
         rig.windage_center = wp.vec3(MAST_STEP[0], 0.0, WINDAGE_HEIGHT)
         tuned = self.config.original_tuning
-        rig.sail_lift_limit_deg = 100.0 if tuned else 180.0
-        rig.foil_lift_limit_deg = 90.0 if tuned else 180.0
+        rig.sail_lift_limit = np.radians(100.0 if tuned else 180.0)
+        rig.foil_lift_limit = np.radians(90.0 if tuned else 180.0)
         rig.original_tuning = int(tuned)
         return rig
 

@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from ..hull import Hull
+from ..validation import require_finite, require_in_range, require_int_in_range, require_positive
 
 __all__ = ["HullShape", "eboat_hull"]
 
@@ -40,7 +41,24 @@ class HullShape:
     transom_beam_fraction: float = 0.75
     section_exponent: float = 4.0
     stations: int = 44
+    """Sections along the length."""
     section_points: int = 12
+    """Points on each half-section, keel to deck."""
+
+    def __post_init__(self):
+        owner = "HullShape"
+        for name in ("stern_x", "bow_x", "deck_z", "keel_z"):
+            require_finite(owner, name, getattr(self, name))
+        if self.bow_x <= self.stern_x:
+            raise ValueError(f"{owner}.bow_x must lie forward of stern_x, got {self.bow_x!r} <= {self.stern_x!r}")
+        if self.deck_z <= self.keel_z:
+            raise ValueError(f"{owner}.deck_z must lie above keel_z, got {self.deck_z!r} <= {self.keel_z!r}")
+        require_positive(owner, "half_beam", self.half_beam, unit=" [m]")
+        require_positive(owner, "section_exponent", self.section_exponent)
+        require_in_range(owner, "widest_at", self.widest_at, 0.05, 0.95)
+        require_in_range(owner, "transom_beam_fraction", self.transom_beam_fraction, 0.0, 1.0)
+        require_int_in_range(owner, "stations", self.stations, 4, 400)
+        require_int_in_range(owner, "section_points", self.section_points, 3, 100)
 
 
 def _half_beam(shape: HullShape, xi: np.ndarray) -> np.ndarray:

@@ -6,6 +6,7 @@ import dataclasses
 
 import numpy as np
 
+from ..boat_type import parallel_axis_term
 from .sheet import LINK_MASS_DIFFERENCE_V_A, LINKS, Link, Version
 
 __all__ = ["MassProperties", "link_inertia", "composite", "eboat_mass_properties"]
@@ -53,8 +54,7 @@ def composite(links) -> MassProperties:
     center = masses @ centers / total
     inertia = np.zeros((3, 3))
     for link, mass, position in zip(links, masses, centers):
-        offset = position - center
-        inertia += link_inertia(link) + mass * (offset @ offset * np.eye(3) - np.outer(offset, offset))
+        inertia += link_inertia(link) + parallel_axis_term(mass, position - center)
     return MassProperties(total, center, inertia)
 
 

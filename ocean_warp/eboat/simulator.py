@@ -17,6 +17,7 @@ from ..ocean_config import OceanConfig
 from ..sensors import SensorConfig, Sensors
 from ..simulator import Simulator, SimulatorConfig
 from ..torch_streams import ordered_with_torch
+from ..validation import require_indices, require_per_item
 from ..wind import Wind, WindConfig
 from .eboat import EBoat, Hydrostatics
 
@@ -55,7 +56,8 @@ class SailingRig:
                   inputs=[self.parameters, self.tables, self.wind.gusts, simulator.config.substep_dt, fleet.position,
                           fleet.orientation, fleet.velocity, fleet.water_velocity, self.wind.velocity,
                           self.rudder_command, self.sheet_command, self.propeller_command],
-                  outputs=[self.rudder_angle, self.sheet_limit, self.boom_angle, self.boom_rate, fleet.model_wrench])
+                  outputs=[self.rudder_angle, self.sheet_limit, self.boom_angle, self.boom_rate, fleet.model_wrench,
+                           fleet.status])
 
     def reset(self, boats: wp.array) -> None:
         wp.launch(reset_rig, dim=boats.shape[0], device=self.device, inputs=[boats],
@@ -64,7 +66,8 @@ class SailingRig:
 
     def set_sheet(self, boats: wp.array, angles: np.ndarray) -> None:
         """Set the sheet command and the actual boom limit of ``boats`` to ``angles`` [rad] at once."""
-        values = wp.array(np.clip(angles, 0.0, self.parameters.sheet_limit_max), dtype=float, device=self.device)
+        limits = np.clip(angles, 0.0, self.parameters.sheet_limit_max).astype(np.float32)
+        values = wp.array(limits, dtype=float, device=self.device)
         wp.launch(set_sheet, dim=boats.shape[0], device=self.device, inputs=[boats, values],
                   outputs=[self.sheet_command, self.sheet_limit])
 
@@ -133,16 +136,15 @@ class EBoatSimulator:
                                  hydrodynamics=hydrodynamics or self.eboat.hydrodynamics,
                                  hull_pressure=self.eboat.config.hydrostatics is Hydrostatics.MESH, **simulator_options)
         self.fleet = Fleet(self.eboat.boat_type, count, device=device)
-        self.wind = Wind(wind, count, device=device)
+        self.wind = Wind(wind, count, substep=config.substep_dt, device=device)
         self.rig = SailingRig(self.eboat, count, self.wind, device=device)
-        self.sensors = Sensors(sensors, count, masthead=self.eboat.masthead, wind=self.wind, device=device)
+        self.sensors = Sensors(sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
+                               gravity=config.hydrodynamics.gravity, device=device)
         models = [self.wind]
         if self.eboat.config.hydrostatics is Hydrostatics.POINTS:
             models.append(_PointBuoyancyModel(self.eboat, device, config.hydrodynamics.gravity))
         models += [self.rig, self.sensors]
         self.simulator = Simulator(ocean, self.fleet, config, models=models)
-        self.wind.bind(config.substep_dt)
-        self.sensors.bind(config.dt, config.hydrodynamics.gravity)
         self._tensors = None
 
     @property
@@ -157,10 +159,11 @@ class EBoatSimulator:
               wind_direction=None, sheet=None) -> None:
         """Put the chosen boats (None: all) upright at ``position`` [m] with ``heading`` [rad, yaw from
         +x]; centre their rudder and boom, stop the propeller, and sheet in, or set the sheet (command
-        and actual limit) to ``sheet`` [rad]; optionally set their environments' mean wind. Scalars
-        and single rows broadcast."""
-        indices = self.fleet._indices(boats)
-        headings = np.broadcast_to(np.asarray(heading, dtype=np.float64), (len(indices),))
+        and actual limit) to ``sheet`` [rad, clipped to 0-90 deg]; optionally set their environments'
+        mean wind. Scalars and single rows broadcast."""
+        indices = require_indices("EBoatSimulator.reset", "boats", boats, self.count)
+        headings = require_per_item("EBoatSimulator.reset", "heading", heading, len(indices))
+        sheets = None if sheet is None else require_per_item("EBoatSimulator.reset", "sheet", sheet, len(indices))
         angles = np.column_stack([np.zeros(len(indices)), np.zeros(len(indices)), headings])
         self.fleet.reset(indices, position=position, orientation=quaternion_from_roll_pitch_yaw(angles),
                          velocity=velocity)
@@ -168,11 +171,11 @@ class EBoatSimulator:
             speed = self.wind.mean_speed.numpy()[indices] if wind_speed is None else wind_speed
             direction = self.wind.mean_direction.numpy()[indices] if wind_direction is None else wind_direction
             self.wind.set(indices, speed=speed, direction=direction)
-        boats_wp = wp.array(indices.astype(np.int32), dtype=int, device=self.device)
+        boats_wp = wp.array(indices, dtype=int, device=self.device)
         with ordered_with_torch(self.device):
             self.rig.reset(boats_wp)
-            if sheet is not None:
-                self.rig.set_sheet(boats_wp, np.broadcast_to(np.asarray(sheet, dtype=np.float32), (len(indices),)))
+            if sheets is not None:
+                self.rig.set_sheet(boats_wp, sheets)
         self.sensors.reset(indices, self.fleet)
 
     def step(self) -> None:
