@@ -29,23 +29,25 @@ from benchmarks.timing import (  # noqa: E402
     write_results_json,
 )
 import ocean_warp as ow  # noqa: E402
-from ocean_warp.eboat import EBoatSimulator  # noqa: E402
+from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
 
 SUBSTEPS = 5
 
 
 def build(device, boats: int, ocean_every_substep: bool, choppiness: float, seed: int = 0) -> EBoatSimulator:
     rng = np.random.default_rng(seed)
-    ocean = ow.Ocean(ow.OceanConfig(tile_size=512.0, resolution=512, significant_wave_height=1.0, peak_period=5.0,
-                                    choppiness=choppiness, seed=seed), device=device)
-    sim = EBoatSimulator(boats, ocean=ocean, wind=ow.WindConfig(speed=7.0, gust_speed_std=1.0, gust_direction_std=0.1),
-                         dt=SUBSTEPS * 0.01, substeps=SUBSTEPS, ocean_every_substep=ocean_every_substep, device=device)
+    config = EBoatSimulatorConfig(
+        ocean=ow.OceanConfig(tile_size=512.0, resolution=512, significant_wave_height=1.0, peak_period=5.0,
+                             choppiness=choppiness, seed=seed),
+        wind=ow.WindConfig(speed=7.0, gust_speed_std=1.0, gust_direction_std=0.1),
+        dt=SUBSTEPS * 0.01, substeps=SUBSTEPS, ocean_every_substep=ocean_every_substep)
+    sim = EBoatSimulator(config, boats, device=device)
     sim.reset(position=np.column_stack([rng.uniform(0, 512, (boats, 2)), np.full(boats, 0.05)]),
               heading=rng.uniform(-np.pi, np.pi, boats), velocity=[1.0, 0, 0, 0, 0, 0],
               sheet=rng.uniform(0.2, 1.2, boats))
-    t = sim.tensors
-    t.rudder_command[:] = t.rudder_command.new_tensor(rng.uniform(-0.2, 0.2, boats))
-    t.propeller_command[:] = t.propeller_command.new_tensor(rng.integers(-1, 3, boats))
+    control = sim.tensors.control
+    control.rudder[:] = control.rudder.new_tensor(rng.uniform(-0.2, 0.2, boats))
+    control.propeller[:] = control.propeller.new_tensor(rng.integers(-1, 3, boats))
     return sim
 
 

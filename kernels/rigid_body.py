@@ -39,8 +39,11 @@ __all__ = [
     "velocity_terms_jacobian",
     "solve6",
     "integrate_boats",
+    "place_boat",
     "reset_boats",
+    "reset_boats_masked",
     "reset_swept_rates",
+    "reset_swept_rates_masked",
     "advance_time",
 ]
 
@@ -306,6 +309,31 @@ def integrate_boats(
     status[boat] = flags
 
 
+@wp.func
+def place_boat(
+    boat: int,
+    new_position: wp.vec3,
+    new_orientation: wp.quat,
+    new_velocity: vec6,
+    position: wp.array(dtype=wp.vec3),
+    orientation: wp.array(dtype=wp.quat),
+    velocity: wp.array(dtype=vec6),
+    status: wp.array(dtype=int),
+    wrench_world: wp.array(dtype=vec6),
+    wrench_body: wp.array(dtype=vec6),
+    water_velocity: wp.array(dtype=wp.vec3),
+):
+    """Put ``boat`` at the new state; clear its flags, its external wrenches and the water velocity seen
+    at its old place (the next substep samples the new one)."""
+    position[boat] = new_position
+    orientation[boat] = wp.normalize(new_orientation)
+    velocity[boat] = new_velocity
+    status[boat] = 0
+    wrench_world[boat] = vec6()
+    wrench_body[boat] = vec6()
+    water_velocity[boat] = wp.vec3()
+
+
 @wp.kernel(enable_backward=False)
 def reset_boats(
     boats: wp.array(dtype=int),
@@ -320,17 +348,40 @@ def reset_boats(
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
 ):
-    """Put boat ``boats[i]`` at the i-th new state; clear its flags, its external wrenches and the water
-    velocity seen at its old place (the next substep samples the new one)."""
+    """Boat ``boats[i]`` to the i-th new state (launch dim: the number of boats reset)."""
     i = wp.tid()
-    boat = boats[i]
-    position[boat] = new_position[i]
-    orientation[boat] = wp.normalize(new_orientation[i])
-    velocity[boat] = new_velocity[i]
-    status[boat] = 0
-    wrench_world[boat] = vec6()
-    wrench_body[boat] = vec6()
-    water_velocity[boat] = wp.vec3()
+    place_boat(boats[i], new_position[i], new_orientation[i], new_velocity[i], position, orientation, velocity,
+               status, wrench_world, wrench_body, water_velocity)
+
+
+@wp.kernel(enable_backward=False)
+def reset_boats_masked(
+    mask: wp.array(dtype=wp.int32),
+    new_position: wp.array(dtype=wp.vec3),
+    new_orientation: wp.array(dtype=wp.quat),
+    new_velocity: wp.array(dtype=vec6),
+    position: wp.array(dtype=wp.vec3),
+    orientation: wp.array(dtype=wp.quat),
+    velocity: wp.array(dtype=vec6),
+    status: wp.array(dtype=int),
+    wrench_world: wp.array(dtype=vec6),
+    wrench_body: wp.array(dtype=vec6),
+    water_velocity: wp.array(dtype=wp.vec3),
+):
+    """Every boat whose ``mask`` is non-zero to its row of the new state (launch dim: all boats); the
+    others are left alone. No index list, so a captured graph can reset whichever boats ended."""
+    boat = wp.tid()
+    if mask[boat] == 0:
+        return
+    place_boat(boat, new_position[boat], new_orientation[boat], new_velocity[boat], position, orientation, velocity,
+               status, wrench_world, wrench_body, water_velocity)
+
+
+@wp.func
+def forget_swept_rate(boat: int, triangle: int, hull_type: wp.array(dtype=int), triangle_count: wp.array(dtype=int),
+                      triangle_offset: wp.array(dtype=int), no_history: float, swept_rate: wp.array(dtype=float)):
+    if triangle < triangle_count[hull_type[boat]]:
+        swept_rate[triangle_offset[boat] + triangle] = no_history
 
 
 @wp.kernel(enable_backward=False)
@@ -344,9 +395,22 @@ def reset_swept_rates(
 ):
     """Forget the slamming history of the reset boats (launch dim (boats, most triangles))."""
     i, triangle = wp.tid()
-    boat = boats[i]
-    if triangle < triangle_count[hull_type[boat]]:
-        swept_rate[triangle_offset[boat] + triangle] = no_history
+    forget_swept_rate(boats[i], triangle, hull_type, triangle_count, triangle_offset, no_history, swept_rate)
+
+
+@wp.kernel(enable_backward=False)
+def reset_swept_rates_masked(
+    mask: wp.array(dtype=wp.int32),
+    hull_type: wp.array(dtype=int),
+    triangle_count: wp.array(dtype=int),
+    triangle_offset: wp.array(dtype=int),
+    no_history: float,
+    swept_rate: wp.array(dtype=float),
+):
+    """The same for every boat whose ``mask`` is non-zero (launch dim (all boats, most triangles))."""
+    boat, triangle = wp.tid()
+    if mask[boat] != 0:
+        forget_swept_rate(boat, triangle, hull_type, triangle_count, triangle_offset, no_history, swept_rate)
 
 
 @wp.kernel(enable_backward=False)

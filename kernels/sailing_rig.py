@@ -19,7 +19,7 @@ from .rigid_body import STATUS_BAD_INPUT, STATUS_NONFINITE
 from .spatial import DEGREES, point_velocity, vec6, wrench_at
 from .wind import GustModel, wind_at_height
 
-__all__ = ["RigParameters", "sailing_rig", "reset_rig", "set_sheet"]
+__all__ = ["RigParameters", "sailing_rig", "reset_rig"]
 
 
 @wp.struct
@@ -193,7 +193,9 @@ def sailing_rig(
 
 @wp.kernel(enable_backward=False)
 def reset_rig(
-    boats: wp.array(dtype=int),
+    mask: wp.array(dtype=wp.int32),
+    sheet: wp.array(dtype=float),
+    sheet_limit_max: float,
     rudder_command: wp.array(dtype=float),
     sheet_command: wp.array(dtype=float),
     propeller_command: wp.array(dtype=int),
@@ -202,22 +204,16 @@ def reset_rig(
     boom_angle: wp.array(dtype=float),
     boom_rate: wp.array(dtype=float),
 ):
-    """Centre the rudder and boom, sheet in, stop the propeller, and clear the commands."""
-    i = wp.tid()
-    boat = boats[i]
+    """For every boat whose ``mask`` is non-zero: centre the rudder and the boom, stop the propeller, and
+    set the sheet, command and actual boom limit alike, to ``sheet`` [rad] (clamped to [0, max])."""
+    boat = wp.tid()
+    if mask[boat] == 0:
+        return
+    limit = wp.clamp(sheet[boat], 0.0, sheet_limit_max)
     rudder_command[boat] = 0.0
-    sheet_command[boat] = 0.0
+    sheet_command[boat] = limit
     propeller_command[boat] = 0
     rudder_angle[boat] = 0.0
-    sheet_limit[boat] = 0.0
+    sheet_limit[boat] = limit
     boom_angle[boat] = 0.0
     boom_rate[boat] = 0.0
-
-
-@wp.kernel(enable_backward=False)
-def set_sheet(boats: wp.array(dtype=int), angles: wp.array(dtype=float), sheet_command: wp.array(dtype=float),
-              sheet_limit: wp.array(dtype=float)):
-    """Sheet command and actual boom limit of ``boats[i]`` set to ``angles[i]`` [rad]."""
-    i = wp.tid()
-    sheet_command[boats[i]] = angles[i]
-    sheet_limit[boats[i]] = angles[i]

@@ -56,7 +56,7 @@ class SensorModel:
 
 @wp.kernel(enable_backward=False)
 def read_sensors(
-    boats: wp.array(dtype=int),
+    mask: wp.array(dtype=wp.int32),
     refresh_all: int,
     stream: int,
     sensors: SensorModel,
@@ -72,10 +72,12 @@ def read_sensors(
     truth: wp.array2d(dtype=float),
     measured: wp.array2d(dtype=float),
 ):
-    """Readings of ``boats[i]``: the truth, and the noisy channels due at step ``counter[0]`` (all of
-    them with ``refresh_all``), with noise from the random stream tagged ``stream``. The caller
-    advances ``counter`` once per step."""
-    boat = boats[wp.tid()]
+    """Readings of every boat whose ``mask`` is non-zero: the truth, and the noisy channels due at step
+    ``counter[0]`` (all of them with ``refresh_all``), with noise from the random stream tagged
+    ``stream``. The caller advances ``counter`` once per step."""
+    boat = wp.tid()
+    if mask[boat] == 0:
+        return
     rotation = orientation[boat]
     nu = velocity[boat]
     linear = wp.vec3(nu[0], nu[1], nu[2])
@@ -111,7 +113,7 @@ def read_sensors(
 
 @wp.kernel(enable_backward=False)
 def reset_sensors(
-    boats: wp.array(dtype=int),
+    mask: wp.array(dtype=wp.int32),
     bias_std: vec6,
     seed: int,
     counter: wp.array(dtype=int),
@@ -120,9 +122,11 @@ def reset_sensors(
     imu_bias: wp.array(dtype=vec6),
     previous_velocity: wp.array(dtype=wp.vec3),
 ):
-    """New IMU biases for the chosen boats, and their velocity as the last one seen (no false jolt)."""
-    i = wp.tid()
-    boat = boats[i]
+    """New IMU biases for the boats whose ``mask`` is non-zero, and their velocity as the last one seen
+    (no false jolt)."""
+    boat = wp.tid()
+    if mask[boat] == 0:
+        return
     state = stream_state(seed, IMU_BIAS, counter[0], boat)
     imu_bias[boat] = vec6(bias_std[0] * wp.randn(state), bias_std[1] * wp.randn(state), bias_std[2] * wp.randn(state),
                           bias_std[3] * wp.randn(state), bias_std[4] * wp.randn(state), bias_std[5] * wp.randn(state))

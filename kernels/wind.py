@@ -84,7 +84,7 @@ def update_wind(
 
 @wp.kernel(enable_backward=False)
 def reset_wind(
-    envs: wp.array(dtype=int),
+    mask: wp.array(dtype=wp.int32),
     new_mean_speed: wp.array(dtype=float),
     new_mean_direction: wp.array(dtype=float),
     mean_speed: wp.array(dtype=float),
@@ -93,11 +93,13 @@ def reset_wind(
     direction: wp.array(dtype=float),
     velocity: wp.array(dtype=wp.vec3),
 ):
-    """Set the chosen environments' mean wind and start their gusts from it."""
-    i = wp.tid()
-    env = envs[i]
-    mean_speed[env] = new_mean_speed[i]
-    mean_direction[env] = new_mean_direction[i]
-    speed[env] = new_mean_speed[i]
-    direction[env] = new_mean_direction[i]
-    velocity[env] = wind_vector(new_mean_speed[i], new_mean_direction[i])
+    """Every environment whose ``mask`` is non-zero gets its row of the new mean wind [m/s, rad], and its
+    gusts restart from that mean."""
+    env = wp.tid()
+    if mask[env] == 0:
+        return
+    mean_speed[env] = new_mean_speed[env]
+    mean_direction[env] = new_mean_direction[env]
+    speed[env] = new_mean_speed[env]
+    direction[env] = new_mean_direction[env]
+    velocity[env] = wind_vector(new_mean_speed[env], new_mean_direction[env])

@@ -39,13 +39,14 @@ from .simulator import Simulator, SimulatorConfig  # noqa: E402
 from .wave_grid import RegularWave  # noqa: E402
 from .wind import Wind, WindConfig  # noqa: E402
 from .sensors import CHANNEL_NAMES, SensorConfig, Sensors  # noqa: E402
-from .eboat import EBoat, EBoatConfig, EBoatSimulator  # noqa: E402
+from .eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
 
 __all__ = [
     "Ocean", "OceanConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan",
     "Hull", "HullRepairWarning", "BoatType", "HydrodynamicsConfig",
     "Fleet", "FleetTensors", "BoatStatus", "Simulator", "SimulatorConfig",
     "Wind", "WindConfig", "Sensors", "SensorConfig", "CHANNEL_NAMES", "EBoat", "EBoatConfig", "EBoatSimulator",
+    "EBoatSimulatorConfig",
 ]
 
 __version__ = "0.1.0"

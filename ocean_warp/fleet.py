@@ -19,11 +19,13 @@ from .kernels.rigid_body import (
     BodyParameters,
     mat66,
     reset_boats,
+    reset_boats_masked,
     reset_swept_rates,
+    reset_swept_rates_masked,
 )
 from .kernels.spatial import vec6
 from .torch_streams import ordered_with_torch
-from .validation import require_indices
+from .validation import require_indices, require_rows
 
 __all__ = ["Fleet", "FleetTensors", "BoatStatus"]
 
@@ -140,9 +142,11 @@ class Fleet:
         Single rows broadcast to all K boats."""
         indices = require_indices("Fleet.reset", "boats", boats, self.count)
         k = len(indices)
-        position = _rows("position", position, k, 3)
-        orientation = _rows("orientation", [0.0, 0.0, 0.0, 1.0] if orientation is None else orientation, k, 4)
-        velocity = _rows("velocity", np.zeros(6) if velocity is None else velocity, k, 6)
+        position = require_rows("Fleet.reset", "position", position, k, 3).astype(np.float32)
+        orientation = require_rows("Fleet.reset", "orientation", [0.0, 0.0, 0.0, 1.0] if orientation is None
+                                   else orientation, k, 4).astype(np.float32)
+        velocity = require_rows("Fleet.reset", "velocity", np.zeros(6) if velocity is None else velocity,
+                                k, 6).astype(np.float32)
         norms = np.linalg.norm(orientation, axis=1)
         if np.any(norms < 1e-6):
             raise ValueError("Fleet.reset: orientation quaternions must not be zero")
@@ -160,6 +164,20 @@ class Fleet:
             wp.launch(reset_swept_rates, dim=(k, self.max_triangle_count), device=device,
                       inputs=[boats_wp, self.hull_type, self.meshes.triangle_count, self.triangle_offset,
                               float(NO_SWEPT_RATE)], outputs=[self.swept_rate])
+
+    def reset_masked(self, mask: wp.array, position: wp.array, orientation: wp.array, velocity: wp.array) -> None:
+        """The device path of :meth:`reset`: every boat whose ``mask`` (N,) int32 is non-zero goes to its row
+        of ``position`` (N,) vec3 [m], ``orientation`` (N,) quat (normalised here) and ``velocity`` (N,)
+        vec6; the others are untouched. It only launches kernels (no allocation, no host copy), so it
+        may run inside a captured CUDA graph; the caller orders it with torch."""
+        device = self.device
+        wp.launch(reset_boats_masked, dim=self.count, device=device,
+                  inputs=[mask, position, orientation, velocity],
+                  outputs=[self.position, self.orientation, self.velocity, self.status, self.wrench_world,
+                           self.wrench_body, self.water_velocity])
+        wp.launch(reset_swept_rates_masked, dim=(self.count, self.max_triangle_count), device=device,
+                  inputs=[mask, self.hull_type, self.meshes.triangle_count, self.triangle_offset, float(NO_SWEPT_RATE)],
+                  outputs=[self.swept_rate])
 
     # --- host copies, for inspection and tests --------------------------------------------------------
     def numpy(self) -> dict[str, np.ndarray]:
@@ -189,19 +207,6 @@ def _type_of_boat(type_count: int, count, types) -> np.ndarray:
 
 def _exclusive_sum(counts: np.ndarray) -> np.ndarray:
     return (np.cumsum(counts) - counts).astype(np.int32)
-
-
-def _rows(name: str, value, k: int, width: int) -> np.ndarray:
-    if hasattr(value, "detach"):
-        value = value.detach().cpu().numpy()
-    array = np.asarray(value, dtype=np.float64)
-    if array.shape == (width,):
-        array = np.tile(array, (k, 1))
-    if array.shape != (k, width):
-        raise ValueError(f"Fleet.reset: {name} must have shape ({k}, {width}) or ({width},), got {array.shape}")
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"Fleet.reset: {name} holds NaN or infinite values")
-    return array.astype(np.float32)
 
 
 def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:

@@ -10,6 +10,7 @@ import warp as wp
 from .kernels.random_streams import SENSOR_NOISE, SENSOR_RESET_NOISE, advance_counter
 from .kernels.sensors import CHANNELS, SensorModel, read_sensors, reset_sensors
 from .kernels.spatial import vec6
+from .masks import mask_of
 from .torch_streams import ordered_with_torch
 from .validation import require_int_in_range, require_non_negative
 
@@ -107,7 +108,7 @@ class Sensors:
         self.imu_bias = wp.zeros(self.count, dtype=vec6, device=self.device)
         self._previous_velocity = wp.zeros(self.count, dtype=wp.vec3, device=self.device)
         self._counter = wp.zeros(1, dtype=int, device=self.device)
-        self._all_boats = wp.array(np.arange(self.count, dtype=np.int32), dtype=int, device=self.device)
+        self._every_boat = wp.ones(self.count, dtype=wp.int32, device=self.device)
         model = SensorModel()
         model.noise_std = wp.array(self.config.channel_noise(), dtype=float, device=self.device)
         model.period = wp.array(self.config.channel_periods(step), dtype=int, device=self.device)
@@ -121,24 +122,27 @@ class Sensors:
         """Sensors read once per step, not per substep."""
 
     def step(self, simulator) -> None:
-        self._read(self._all_boats, False, SENSOR_NOISE, simulator.fleet)
+        self._read(self._every_boat, False, SENSOR_NOISE, simulator.fleet)
         wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
     def reset(self, boats: np.ndarray, fleet) -> None:
-        """New IMU biases for ``boats``, no false acceleration on their next reading, and every channel
-        read at once from their new state."""
+        """Host path of :meth:`reset_masked` for the boats at the indices ``boats``."""
+        with ordered_with_torch(self.device):
+            self.reset_masked(mask_of(boats, self.count, self.device), fleet)
+
+    def reset_masked(self, mask: wp.array, fleet) -> None:
+        """For every boat whose ``mask`` (N,) int32 is non-zero: a new IMU bias, no false acceleration on
+        its next reading, and every channel read at once from its new state. Launches only (graph-safe)."""
         c = self.config
         bias_std = vec6(*([c.accelerometer_bias_std] * 3 + [c.gyroscope_bias_std] * 3))
-        boats_wp = wp.array(np.asarray(boats, dtype=np.int32), dtype=int, device=self.device)
-        with ordered_with_torch(self.device):
-            wp.launch(reset_sensors, dim=len(boats), device=self.device,
-                      inputs=[boats_wp, bias_std, c.seed, self._counter, fleet.orientation, fleet.velocity],
-                      outputs=[self.imu_bias, self._previous_velocity])
-            self._read(boats_wp, True, SENSOR_RESET_NOISE, fleet)
+        wp.launch(reset_sensors, dim=self.count, device=self.device,
+                  inputs=[mask, bias_std, c.seed, self._counter, fleet.orientation, fleet.velocity],
+                  outputs=[self.imu_bias, self._previous_velocity])
+        self._read(mask, True, SENSOR_RESET_NOISE, fleet)
 
-    def _read(self, boats: wp.array, refresh_all: bool, stream: int, fleet) -> None:
-        wp.launch(read_sensors, dim=boats.shape[0], device=self.device,
-                  inputs=[boats, int(refresh_all), stream, self._model, self.wind.gusts, self._counter,
+    def _read(self, mask: wp.array, refresh_all: bool, stream: int, fleet) -> None:
+        wp.launch(read_sensors, dim=self.count, device=self.device,
+                  inputs=[mask, int(refresh_all), stream, self._model, self.wind.gusts, self._counter,
                           fleet.position, fleet.orientation, fleet.velocity, fleet.water_velocity,
                           self.wind.velocity, self.imu_bias],
                   outputs=[self._previous_velocity, self.truth, self.readings])

@@ -146,7 +146,9 @@ class Simulator:
         wp.launch(sample_origin_water, dim=fleet.count, device=self.device,
                   inputs=[self.ocean.surface, fleet.position, fleet.orientation], outputs=[fleet.water_velocity])
 
-    def _launch_step(self) -> None:
+    def launch_step(self) -> None:
+        """Launch one step's kernels without capturing them, e.g. inside a larger capture of the caller's
+        (an environment's decision step); :meth:`step` is the usual way."""
         for index in range(self.config.substeps):
             self.substep(update_ocean=self.config.ocean_every_substep or index == 0)
         for model in self.models:
@@ -158,11 +160,11 @@ class Simulator:
         the fleet's tensors and before torch's next)."""
         with ordered_with_torch(self.device):
             if not (self.device.is_cuda and self.config.capture_graph):
-                self._launch_step()
+                self.launch_step()
                 return
             if self._graph is None:
                 with wp.ScopedCapture(device=self.device) as capture:
-                    self._launch_step()
+                    self.launch_step()
                 self._graph = capture.graph
             wp.capture_launch(self._graph)
 

@@ -17,6 +17,7 @@ __all__ = [
     "require_choice",
     "require_indices",
     "require_per_item",
+    "require_rows",
 ]
 
 
@@ -107,6 +108,21 @@ def require_per_item(owner: str, field: str, value, count: int) -> np.ndarray:
     except (TypeError, ValueError):
         raise ValueError(f"{_describe(owner, field)} must be one number or {count} of them, got "
                          f"shape {np.shape(value)}") from None
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{_describe(owner, field)} holds NaN or infinite values")
+    return array
+
+
+def require_rows(owner: str, field: str, value, k: int, width: int) -> np.ndarray:
+    """(k, width) float64 from ``k`` rows or one row of ``width`` finite numbers (numpy, list or torch)
+    that broadcasts; else raise ``ValueError``."""
+    if hasattr(value, "detach"):
+        value = value.detach().cpu().numpy()
+    array = np.asarray(value, dtype=np.float64)
+    if array.shape == (width,):
+        array = np.tile(array, (k, 1))
+    if array.shape != (k, width):
+        raise ValueError(f"{_describe(owner, field)} must have shape ({k}, {width}) or ({width},), got {array.shape}")
     if not np.all(np.isfinite(array)):
         raise ValueError(f"{_describe(owner, field)} holds NaN or infinite values")
     return array

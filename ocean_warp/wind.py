@@ -10,6 +10,7 @@ import warp as wp
 
 from .kernels.random_streams import advance_counter
 from .kernels.wind import GustModel, reset_wind, update_wind
+from .masks import mask_of, rows_at
 from .torch_streams import ordered_with_torch
 from .validation import (
     require_finite,
@@ -119,8 +120,12 @@ class Wind:
             return
         device = self.device
         with ordered_with_torch(device):
-            wp.launch(reset_wind, dim=len(indices), device=device,
-                      inputs=[wp.array(indices.astype(np.int32), dtype=int, device=device),
-                              wp.array(speeds.astype(np.float32), dtype=float, device=device),
-                              wp.array(directions.astype(np.float32), dtype=float, device=device)],
-                      outputs=[self.mean_speed, self.mean_direction, self.speed, self.direction, self.velocity])
+            self.reset_masked(mask_of(indices, self.count, device),
+                              wp.array(rows_at(indices, speeds, self.count), dtype=float, device=device),
+                              wp.array(rows_at(indices, directions, self.count), dtype=float, device=device))
+
+    def reset_masked(self, mask: wp.array, speed: wp.array, direction: wp.array) -> None:
+        """Device path of :meth:`set`: environments whose ``mask`` (N,) int32 is non-zero take their row of
+        ``speed`` (N,) [m/s] and ``direction`` (N,) [rad] as the new mean; launches only (graph-safe)."""
+        wp.launch(reset_wind, dim=self.count, device=self.device, inputs=[mask, speed, direction],
+                  outputs=[self.mean_speed, self.mean_direction, self.speed, self.direction, self.velocity])

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import ocean_warp as ow
-from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.hull_shape import HullShape
 from ocean_warp.eboat.mass_properties import eboat_mass_properties
 from ocean_warp.eboat.sheet import LINKS, Version
@@ -112,7 +112,7 @@ def points_equilibrium_depth(eboat):
     """Depth [m] of the four points when each carries a quarter of the weight: rho g (L/2) S(R, h) = m g / 4,
     with the circle segment S written out here."""
     radius, length = eboat.vrx.hull_radius, eboat.vrx.hull_length
-    target = eboat.boat_type.mass / (2.0 * eboat.config.water_density * length)
+    target = eboat.boat_type.mass / (2.0 * EBoatSimulatorConfig().water_density * length)
     low, high = 0.0, radius
     for _ in range(50):
         h = 0.5 * (low + high)
@@ -129,7 +129,7 @@ def test_rest_height_is_where_the_reference_buoyancy_carries_the_weight():
 @pytest.mark.parametrize("hydrostatics", ["mesh", "points"])
 def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics):
     eboat = EBoat(EBoatConfig(hydrostatics=hydrostatics))
-    sim = EBoatSimulator(2, eboat=eboat, wind=ow.WindConfig(speed=0.0), device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(boat=eboat.config, wind=ow.WindConfig(speed=0.0)), 2, device=device)
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.1]])
     heights = []
     for step in range(500):
@@ -157,8 +157,6 @@ def test_bad_eboat_config_is_refused():
         EBoatConfig(version="V-D")
     with pytest.raises(ValueError, match="EBoatConfig.hydrostatics must be one of 'mesh', 'points'"):
         EBoatConfig(hydrostatics="strips")
-    with pytest.raises(ValueError, match="EBoatConfig.water_density must be > 0"):
-        EBoatConfig(water_density=-1.0)
     with pytest.raises(ValueError, match="HullShape.bow_x must lie forward of stern_x"):
         HullShape(bow_x=-1.5)
     with pytest.raises(ValueError, match=r"HullShape.widest_at must be in \[0.05, 0.95\]"):
@@ -166,12 +164,12 @@ def test_bad_eboat_config_is_refused():
 
 
 def test_bad_eboat_resets_are_refused(device):
-    sim = EBoatSimulator(3, device=device)
+    sim = EBoatSimulator(None, 3, device=device)
     with pytest.raises(ValueError, match="EBoatSimulator.reset.sheet holds NaN"):
         sim.reset(sheet=[0.2, np.nan, 0.3])
     with pytest.raises(ValueError, match="EBoatSimulator.reset.heading must be one number or 3"):
         sim.reset(heading=[0.1, 0.2])
     with pytest.raises(ValueError, match=r"EBoatSimulator.reset.boats: indices must lie in \[0, 2\]"):
         sim.reset([3])
-    with pytest.raises(ValueError, match="Wind.set.speed must be >= 0"):
+    with pytest.raises(ValueError, match="EBoatSimulator.reset.wind_speed must be >= 0"):
         sim.reset(wind_speed=-2.0)

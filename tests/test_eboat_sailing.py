@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import ocean_warp as ow
-from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.polar import speed_polar
 from ocean_warp.examples.polar import hull_speed
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
@@ -15,39 +15,39 @@ CALM = ow.WindConfig(speed=0.0)
 
 
 def run(sim, seconds):
-    for _ in range(int(round(seconds / sim.simulator.config.dt))):
+    for _ in range(int(round(seconds / sim.config.dt))):
         sim.step()
     return sim.fleet.numpy()
 
 
 def test_rudder_turns_to_port_when_positive_and_moves_at_its_rate(device):
-    sim = EBoatSimulator(3, wind=CALM, device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=CALM), 3, device=device)
     sim.reset(position=[[0, 0, 0.05], [30, 0, 0.05], [60, 0, 0.05]], velocity=[1.2, 0, 0, 0, 0, 0])
     t = sim.tensors
-    t.propeller_command[:] = 3
-    t.rudder_command[:] = t.rudder_command.new_tensor([0.4, -0.4, 2.0])  # the last beyond the 60 deg range
+    t.control.propeller[:] = 3
+    t.control.rudder[:] = t.control.rudder.new_tensor([0.4, -0.4, 2.0])  # the last beyond the 60 deg range
     run(sim, 0.5)
-    rudder = sim.rig.rudder_angle.numpy()
+    rudder = sim.state.rudder_angle.numpy()
     np.testing.assert_allclose(rudder, [0.2, -0.2, 0.2], atol=1e-5)  # 0.4 rad/s for 0.5 s
     state = run(sim, 4.0)
     assert state["velocity"][0, 5] > 0.05 and state["velocity"][1, 5] < -0.05
-    assert sim.rig.rudder_angle.numpy()[2] == pytest.approx(math.radians(60.0), abs=1e-5)
+    assert sim.state.rudder_angle.numpy()[2] == pytest.approx(math.radians(60.0), abs=1e-5)
 
 
 def test_boom_swings_to_leeward_within_the_sheet_limit(device):
-    sim = EBoatSimulator(2, wind=ow.WindConfig(speed=6.0, direction=math.pi), device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=6.0, direction=math.pi)), 2, device=device)
     # Heading north: the wind (from the east) comes over the starboard side of boat 0, over port for boat 1.
     sim.reset(position=[[0, 0, 0.05], [30, 0, 0.05]], heading=[math.pi / 2, -math.pi / 2])
-    sim.tensors.sheet_command[:] = math.radians(50)
+    sim.tensors.control.sheet[:] = math.radians(50)
     run(sim, 1.0)
-    assert sim.rig.sheet_limit.numpy() == pytest.approx([0.5, 0.5], abs=1e-5)  # 0.5 rad/s for 1 s
+    assert sim.state.sheet_limit.numpy() == pytest.approx([0.5, 0.5], abs=1e-5)  # 0.5 rad/s for 1 s
     run(sim, 3.0)
-    boom = sim.rig.boom_angle.numpy()
+    boom = sim.state.boom_angle.numpy()
     np.testing.assert_allclose(boom, [math.radians(50), -math.radians(50)], atol=1e-4)  # at the limit, leeward
 
 
 def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
-    sim = EBoatSimulator(2, wind=ow.WindConfig(speed=1.0), device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=1.0)), 2, device=device)
     heading, roll, pitch = rng.uniform(-math.pi, math.pi), rng.uniform(-0.2, 0.2), rng.uniform(-0.05, 0.05)
     wind_direction = rng.uniform(-math.pi, math.pi)
     nu = np.concatenate([rng.uniform(-1, 2, 3) * [1, 0.3, 0.1], rng.uniform(-0.2, 0.2, 3)])
@@ -58,9 +58,9 @@ def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
                     orientation=quaternion_from_roll_pitch_yaw([[roll, pitch, heading], [-roll, pitch, -heading]]))
     t = sim.tensors
     rudder, sheet = rng.uniform(-0.5, 0.5), rng.uniform(0.2, 1.2)
-    t.rudder_command[:] = t.rudder_command.new_tensor([rudder, -rudder])
-    t.sheet_command[:] = sheet
-    t.propeller_command[:] = int(rng.integers(-5, 6))
+    t.control.rudder[:] = t.control.rudder.new_tensor([rudder, -rudder])
+    t.control.sheet[:] = sheet
+    t.control.propeller[:] = int(rng.integers(-5, 6))
     flip_force = np.array([1, -1, 1, -1, 1, -1])
     sim.step()
     wrench = sim.fleet.hydro_wrench.numpy() + sim.fleet.model_wrench.numpy()
@@ -72,15 +72,15 @@ def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
     np.testing.assert_allclose(angles[1], angles[0] * [-1, 1, -1], atol=2e-3)
     travelled = state["position"] - [[0, 5.0, 0], [40, -5.0, 0]]
     np.testing.assert_allclose(travelled[1], travelled[0] * [1, -1, 1], atol=5e-3)
-    np.testing.assert_allclose(sim.rig.boom_angle.numpy()[1], -sim.rig.boom_angle.numpy()[0], atol=2e-3)
+    np.testing.assert_allclose(sim.state.boom_angle.numpy()[1], -sim.state.boom_angle.numpy()[0], atol=2e-3)
 
 
 def test_head_to_wind_the_boat_loses_speed(device):
-    sim = EBoatSimulator(2, wind=ow.WindConfig(speed=8.0, direction=math.pi), device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=8.0, direction=math.pi)), 2, device=device)
     # Boat 0 heads into the wind (it comes from +x); boat 1 coasts the same way in still air.
     sim.reset(position=[[0, 0, 0.05], [0, 40, 0.05]], heading=0.0, velocity=[1.5, 0, 0, 0, 0, 0],
               wind_speed=[8.0, 0.0], wind_direction=math.pi)
-    sim.tensors.sheet_command[:] = math.radians(30)
+    sim.tensors.control.sheet[:] = math.radians(30)
     speeds = []
     for _ in range(8):
         state = run(sim, 2.0)
@@ -98,19 +98,19 @@ def steady_speed(sim, seconds=60.0, window=10.0):
 
 
 def test_full_thrust_speed_is_where_thrust_meets_the_towing_resistance(device):
-    motor = EBoatSimulator(1, wind=CALM, device=device)
+    motor = EBoatSimulator(EBoatSimulatorConfig(wind=CALM), 1, device=device)
     motor.reset(position=[0, 0, 0.05])
-    motor.tensors.propeller_command[:] = 5
+    motor.tensors.control.propeller[:] = 5
     speed, wobble = steady_speed(motor)
     assert wobble[0] < 0.01 * speed[0], "steady"
     thrust = 5 * 24.02  # sheet: 24.02 N per level
     # Towing tank: the same boat pulled at its centre of mass by known horizontal forces.
     forces = np.array([0.8, 1.0, 1.2]) * thrust
-    tow = EBoatSimulator(3, wind=CALM, device=device)
+    tow = EBoatSimulator(EBoatSimulatorConfig(wind=CALM), 3, device=device)
     tow.reset(position=[[0, 0, 0.05], [0, 20, 0.05], [0, 40, 0.05]])
     wrench = np.zeros((3, 6))
     wrench[:, 0] = forces
-    tow.fleet.tensors.wrench_world[:] = tow.fleet.tensors.wrench_world.new_tensor(wrench)
+    tow.tensors.control.wrench_world[:] = tow.tensors.control.wrench_world.new_tensor(wrench)
     towed, _ = steady_speed(tow)
     assert np.all(np.diff(towed) > 0)
     resistance_at_motor_speed = np.interp(speed[0], towed, forces)
@@ -119,20 +119,20 @@ def test_full_thrust_speed_is_where_thrust_meets_the_towing_resistance(device):
 
 
 def test_nan_commands_and_wind_freeze_and_flag_the_boat(device):
-    sim = EBoatSimulator(3, wind=ow.WindConfig(speed=6.0), device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=6.0)), 3, device=device)
     sim.reset(position=[[0, 0, 0.05], [30, 0, 0.05], [60, 0, 0.05]], velocity=[1.0, 0, 0, 0, 0, 0], sheet=0.5)
     run(sim, 0.5)
     before = sim.fleet.numpy()
     t = sim.tensors
-    t.rudder_command[0] = math.nan  # a command from a diverged policy
-    t.wind_speed[1] = math.inf  # a bad environment setting
+    t.control.rudder[0] = math.nan  # a command from a diverged policy
+    t.state.wind_mean_speed[1] = math.inf  # a bad environment setting
     run(sim, 0.5)
     state = sim.fleet.numpy()
     bad = ow.BoatStatus.BAD_INPUT | ow.BoatStatus.NONFINITE
     np.testing.assert_array_equal(state["status"], [bad, bad, 0])
     assert np.all(np.isfinite(state["position"])) and np.all(np.isfinite(state["velocity"]))
     np.testing.assert_array_equal(state["position"][:2], before["position"][:2])  # frozen at the last finite state
-    assert np.all(np.isfinite(sim.rig.rudder_angle.numpy()))
+    assert np.all(np.isfinite(sim.state.rudder_angle.numpy()))
     sim.reset([0, 1], position=[[0, 0, 0.05], [30, 0, 0.05]], wind_speed=6.0)
     run(sim, 0.5)
     np.testing.assert_array_equal(sim.fleet.numpy()["status"], [0, 0, 0])
@@ -141,10 +141,10 @@ def test_nan_commands_and_wind_freeze_and_flag_the_boat(device):
 def test_original_tuning_scales_the_rudder_force(device):
     forces = []
     for tuned in (False, True):
-        sim = EBoatSimulator(1, eboat=EBoat(EBoatConfig(original_tuning=tuned)), wind=CALM, device=device)
+        sim = EBoatSimulator(EBoatSimulatorConfig(boat=EBoatConfig(original_tuning=tuned), wind=CALM), 1, device=device)
         sim.reset(position=[0, 0, 0.05], velocity=[1.5, 0, 0, 0, 0, 0])
-        sim.rig.rudder_angle.fill_(0.3)
-        sim.rig.rudder_command.fill_(0.3)
+        sim.state.rudder_angle.fill_(0.3)
+        sim.control.rudder.fill_(0.3)
         sim.simulator.substep()  # one substep: no leeway yet, so the rudder is the only side force
         forces.append(sim.fleet.model_wrench.numpy()[0, 1])
     assert forces[1] == pytest.approx(0.3 * forces[0], rel=0.05)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import ocean_warp as ow
-from ocean_warp.eboat import EBoatSimulator
+from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.sensors import CHANNEL_NAMES
 from tests.hull_setups import rotation_matrix
 
@@ -64,16 +64,17 @@ def test_bad_wind_config_is_refused():
 def sensor_run(device, sensors, steps, *, wind_speed=5.0, count=64, rng=None):
     """Boats reset at random places and headings, then ``steps`` steps: the simulator and the truth
     and readings after the reset (index 0) and after every step."""
-    sim = EBoatSimulator(count, wind=ow.WindConfig(speed=wind_speed, direction=1.0), sensors=sensors, device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=wind_speed, direction=1.0), sensors=sensors), count,
+                         device=device)
     rng = rng or np.random.default_rng(0)
     angles = np.column_stack([np.zeros(count), np.zeros(count), rng.uniform(-math.pi, math.pi, count)])
     sim.reset(position=np.column_stack([rng.uniform(-50, 50, (count, 2)), np.full(count, 0.04)]),
               heading=angles[:, 2])
-    truths, readings = [sim.sensors.truth.numpy().copy()], [sim.sensors.readings.numpy().copy()]
+    truths, readings = [sim.state.truth.numpy().copy()], [sim.state.readings.numpy().copy()]
     for _ in range(steps):
         sim.step()
-        truths.append(sim.sensors.truth.numpy().copy())
-        readings.append(sim.sensors.readings.numpy().copy())
+        truths.append(sim.state.truth.numpy().copy())
+        readings.append(sim.state.readings.numpy().copy())
     return sim, np.array(truths), np.array(readings)
 
 
@@ -142,8 +143,9 @@ def test_reset_reads_the_new_state_at_once(device, rng):
     at the masthead sees the wind's power-law height profile."""
     exponent = float(rng.uniform(0.1, 0.2))
     count = 8
-    sim = EBoatSimulator(count, wind=ow.WindConfig(speed=6.0, direction=-0.5, profile_exponent=exponent),
-                         sensors=ow.SensorConfig.noise_free(), device=device)
+    config = EBoatSimulatorConfig(wind=ow.WindConfig(speed=6.0, direction=-0.5, profile_exponent=exponent),
+                                  sensors=ow.SensorConfig.noise_free())
+    sim = EBoatSimulator(config, count, device=device)
     sim.reset(position=[0.0, 0.0, 0.05])
     for _ in range(3):
         sim.step()
@@ -151,7 +153,7 @@ def test_reset_reads_the_new_state_at_once(device, rng):
     places = np.column_stack([rng.uniform(-100, 100, (len(moved), 2)), rng.uniform(0.0, 0.1, len(moved))])
     headings = rng.uniform(-math.pi, math.pi, len(moved))
     sim.reset(moved, position=places, heading=headings)
-    truth, readings = sim.sensors.truth.numpy()[moved], sim.sensors.readings.numpy()[moved]
+    truth, readings = sim.state.truth.numpy()[moved], sim.state.readings.numpy()[moved]
     np.testing.assert_array_equal(readings, truth)
     np.testing.assert_allclose(truth[:, 0:3], places, atol=1e-5)
     np.testing.assert_allclose(truth[:, 3:6], 0.0, atol=1e-6)

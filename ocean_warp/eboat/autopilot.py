@@ -29,7 +29,7 @@ class HeadingAutopilot:
         self.gains.integral = integral
         self.gains.damping = damping
         self.gains.rudder_limit = rudder_limit
-        self.gains.dt = simulator.simulator.config.dt
+        self.gains.dt = simulator.config.dt
 
     def set_target(self, headings) -> None:
         """Headings [rad] for every boat (or one for all); clears the integrators."""
@@ -40,5 +40,5 @@ class HeadingAutopilot:
     def steer(self) -> None:
         sim = self.simulator
         wp.launch(hold_heading, dim=sim.count, device=sim.device,
-                  inputs=[self.target, self.gains, sim.fleet.orientation, sim.fleet.velocity, self._integral],
-                  outputs=[sim.rig.rudder_command])
+                  inputs=[self.target, self.gains, sim.state.orientation, sim.state.velocity, self._integral],
+                  outputs=[sim.control.rudder])

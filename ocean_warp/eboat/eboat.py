@@ -14,12 +14,12 @@ from ..hydrodynamics_config import HydrodynamicsConfig
 from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
 from ..kernels.sailing_rig import RigParameters
-from ..validation import require_choice, require_positive
+from ..validation import require_choice
 from .hull_shape import HullShape, eboat_hull
 from .mass_properties import MassProperties, eboat_mass_properties
 from .sheet import ACTUATORS, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, Version
 
-__all__ = ["Hydrostatics", "EBoatConfig", "EBoat", "load_foil_table"]
+__all__ = ["Hydrostatics", "EBoatConfig", "EBoat", "load_foil_table", "eboat_hydrodynamics"]
 
 MAST_LENGTH = 3.55
 """Sheet, mast row [m]."""
@@ -48,8 +48,6 @@ class EBoatConfig:
     """"V-A", "V-B" or "V-C" (default): the sheet's snapshots of the original model, where they differ."""
     hydrostatics: Hydrostatics | str = Hydrostatics.MESH
     """"mesh" (default) or "points" (the original four-point buoyancy and VRX damping)."""
-    water_density: float = 1025.0
-    """[kg/m^3]; sea water. The original used 997: set it to compare with Gazebo."""
     original_tuning: bool = False
     """Apply V-C's tuning hacks (sheet: sail lift held above 100 deg, foil lift zero above 90 deg,
     rudder force x 0.3, keel minus 0.6 of the sail's side force, sail force x 0.1 outside 5-160 deg).
@@ -61,8 +59,6 @@ class EBoatConfig:
         object.__setattr__(self, "version", require_choice("EBoatConfig", "version", self.version, Version))
         object.__setattr__(self, "hydrostatics", require_choice("EBoatConfig", "hydrostatics", self.hydrostatics,
                                                                 Hydrostatics))
-        object.__setattr__(self, "water_density", require_positive("EBoatConfig", "water_density",
-                                                                   self.water_density, unit=" [kg/m^3]"))
         if not isinstance(self.original_tuning, bool):
             raise ValueError(f"EBoatConfig.original_tuning must be True or False, got {self.original_tuning!r}")
 
@@ -74,6 +70,11 @@ def load_foil_table() -> np.ndarray:
     if table.shape != (181, 5) or not np.array_equal(table[:, 0], np.arange(181)):
         raise ValueError(f"foil_coefficients.csv must hold 181 rows of 0..180 deg and 4 coefficients, got {table.shape}")
     return table
+
+
+def eboat_hydrodynamics(**overrides) -> HydrodynamicsConfig:
+    """The per-triangle water model tuned for the E-Boat's hull (see below), with ``overrides``."""
+    return HydrodynamicsConfig(**{**EBOAT_HYDRODYNAMICS, **overrides})
 
 
 # Drag of the mesh model tuned for this hull (it has no wave-making resistance of its own): with the
@@ -105,7 +106,8 @@ class EBoat:
         self.boat_type = BoatType(hull=self.hull, mass=mp.mass, center_of_mass=tuple(mp.center_of_mass),
                                   inertia=mp.inertia, added_mass=vrx.added_mass, name=f"eboat {version.value}",
                                   **damping)
-        self.hydrodynamics = HydrodynamicsConfig(water_density=self.config.water_density, **EBOAT_HYDRODYNAMICS)
+        self.hydrodynamics = eboat_hydrodynamics()
+        """The water model tuned for this hull, in sea water (the simulator's config sets the density)."""
         self.foil_table = load_foil_table()
         self.masthead = np.array([MAST_STEP[0], 0.0, MAST_STEP[2] + MAST_LENGTH])
         """Top of the mast in the body frame [m]: vane and anemometer."""
@@ -120,7 +122,8 @@ class EBoat:
         sail = next(link for link in LINKS if link.name == "sail").mass
         return boom * 1.8**2 / 3 + sail * (0.6**2 + 1.8**2 / 18)
 
-    def rig_parameters(self) -> RigParameters:
+    def rig_parameters(self, water_density: float) -> RigParameters:
+        """The rig's device struct for water of ``water_density`` [kg/m^3] (keel and rudder)."""
         figures, act = self.rig_figures, ACTUATORS
         rig = RigParameters()
         rig.mast_step = wp.vec3(MAST_STEP[0], MAST_STEP[1], MAST_STEP[2])
@@ -142,7 +145,7 @@ class EBoat:
         rig.boom_inertia = self.boom_inertia
         rig.boom_damping = figures.boom_damping
         rig.air_density = ENVIRONMENT["air_density"]
-        rig.water_density = self.config.water_density
+        rig.water_density = water_density
         rig.windage_area = WINDAGE_AREA
         rig.windage_center = wp.vec3(MAST_STEP[0], 0.0, WINDAGE_HEIGHT)
         tuned = self.config.original_tuning
@@ -157,29 +160,31 @@ class EBoat:
             setattr(tables, name, wp.array(self.foil_table[:, column].astype(np.float32), dtype=float, device=device))
         return tables
 
-    def point_buoyancy(self, device, gravity: float) -> PointBuoyancy:
+    def point_buoyancy(self, device, water: HydrodynamicsConfig) -> PointBuoyancy:
         """The original twin's four buoyancy points (sheet: x = +-0.6, y = +-0.45 m, R 0.4 m, L 2.4 m)."""
         model = PointBuoyancy()
         model.points = wp.array(np.array(self.vrx.points, dtype=np.float32), dtype=wp.vec3, device=device)
         model.radius = self.vrx.hull_radius
         model.slice_length = self.vrx.hull_length / 2.0
-        model.density = self.config.water_density
-        model.gravity = gravity
+        model.density = water.water_density
+        model.gravity = water.gravity
         return model
 
-    def rest_height(self, device="cpu") -> float:
-        """Height [m] of the base frame above still water when the boat floats upright at rest (found
-        by bisection on the vertical force of the hull pass)."""
+    def rest_height(self, device="cpu", water: HydrodynamicsConfig | None = None) -> float:
+        """Height [m] of the base frame above still water (``water``, default this boat's) when the boat
+        floats upright at rest (found by bisection on the vertical force of the hull pass)."""
         from ..fleet import Fleet
         from ..ocean import Ocean
         from ..ocean_config import OceanConfig
         from ..simulator import Simulator, SimulatorConfig
 
         fleet = Fleet(self.boat_type, 1, device=device)
-        still = Ocean(OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0), device=device)
-        simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=self.hydrodynamics.without_drag()))
+        water = water if water is not None else self.hydrodynamics
+        still = Ocean(OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0, gravity=water.gravity),
+                      device=device)
+        simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=water.without_drag()))
         low, high = -0.5, 0.5
-        weight = self.boat_type.mass * self.hydrodynamics.gravity
+        weight = self.boat_type.mass * water.gravity
         for _ in range(40):
             middle = 0.5 * (low + high)
             fleet.reset(position=[0.0, 0.0, middle])

@@ -19,8 +19,9 @@ import numpy as np
 from ..frames import roll_pitch_yaw
 from ..wind import WindConfig
 from .autopilot import HeadingAutopilot
-from .eboat import EBoat
+from .eboat import EBoatConfig
 from .simulator import EBoatSimulator
+from .simulator_config import EBoatSimulatorConfig
 
 __all__ = ["PolarResult", "speed_polar"]
 
@@ -47,7 +48,7 @@ class PolarResult:
 
 def speed_polar(*, wind_speeds=(4.0, 7.0, 10.0), wind_angles_deg=np.arange(0.0, 181.0, 15.0),
                 sheets_deg=np.arange(0.0, 91.0, 15.0), settle_time: float = 60.0, average_time: float = 20.0,
-                heading_tolerance_deg: float = 5.0, eboat: EBoat | None = None, dt: float = 0.05,
+                heading_tolerance_deg: float = 5.0, boat: EBoatConfig | None = None, dt: float = 0.05,
                 device=None) -> PolarResult:
     """Sail the grid and return the polar (see the module docstring)."""
     speeds = np.asarray(wind_speeds, dtype=np.float64)
@@ -56,8 +57,9 @@ def speed_polar(*, wind_speeds=(4.0, 7.0, 10.0), wind_angles_deg=np.arange(0.0, 
     grid_speed, grid_angle, grid_sheet = (g.ravel() for g in np.meshgrid(speeds, angles, sheets, indexing="ij"))
     count = grid_speed.size
     # The wind comes from +x (blows towards -x); a boat with true wind angle a heads at yaw a.
-    sim = EBoatSimulator(count, eboat=eboat, wind=WindConfig(speed=float(speeds[0]), direction=math.pi), dt=dt,
-                         device=device)
+    config = EBoatSimulatorConfig(boat=boat if boat is not None else EBoatConfig(),
+                                  wind=WindConfig(speed=float(speeds[0]), direction=math.pi), dt=dt)
+    sim = EBoatSimulator(config, count, device=device)
     sim.reset(position=np.column_stack([np.arange(count) * 30.0, np.zeros(count), np.zeros(count)]),
               heading=grid_angle, velocity=[1.0, 0, 0, 0, 0, 0], wind_speed=grid_speed, wind_direction=math.pi,
               sheet=grid_sheet)

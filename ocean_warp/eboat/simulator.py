@@ -1,38 +1,39 @@
-"""Many E-Boats on one ocean in one wind: the Simulator with the rig, wind and sensor models wired in."""
+"""Many E-Boats on one ocean, each in a wind of its own: the Simulator with the rig, wind and sensor
+models wired in, and named views of its state, controls and resets."""
 
 from __future__ import annotations
 
-from typing import NamedTuple
 
 import numpy as np
 import warp as wp
 
 from ..fleet import Fleet
-from ..hydrodynamics_config import HydrodynamicsConfig
 from ..frames import quaternion_from_roll_pitch_yaw
 from ..kernels.point_buoyancy import point_buoyancy
-from ..kernels.sailing_rig import reset_rig, sailing_rig, set_sheet
+from ..kernels.sailing_rig import reset_rig, sailing_rig
+from ..masks import mask_of, rows_at
 from ..ocean import Ocean
-from ..ocean_config import OceanConfig
-from ..sensors import SensorConfig, Sensors
-from ..simulator import Simulator, SimulatorConfig
+from ..sensors import Sensors
+from ..simulator import Simulator
 from ..torch_streams import ordered_with_torch
-from ..validation import require_indices, require_per_item
-from ..wind import Wind, WindConfig
+from ..validation import require_indices, require_int_in_range, require_per_item, require_rows
+from ..wind import Wind
 from .eboat import EBoat, Hydrostatics
+from .simulator_config import EBoatSimulatorConfig
+from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
 
-__all__ = ["EBoatSimulator", "SailingRig", "EBoatTensors"]
+__all__ = ["EBoatSimulator", "SailingRig"]
 
 
 class SailingRig:
     """Commands and actuator state of every boat's rig, and the model that turns them, with the
     wind and the water, into sail, keel, rudder and propeller forces every substep."""
 
-    def __init__(self, eboat: EBoat, count: int, wind: Wind, *, device):
+    def __init__(self, eboat: EBoat, count: int, wind: Wind, *, water_density: float, device):
         self.device = wp.get_device(device)
         self.count = count
         self.wind = wind
-        self.parameters = eboat.rig_parameters()
+        self.parameters = eboat.rig_parameters(water_density)
         self.tables = eboat.foil_tables(self.device)
         zeros = lambda dtype=float: wp.zeros(count, dtype=dtype, device=self.device)  # noqa: E731
         self.rudder_command = zeros()
@@ -59,24 +60,20 @@ class SailingRig:
                   outputs=[self.rudder_angle, self.sheet_limit, self.boom_angle, self.boom_rate, fleet.model_wrench,
                            fleet.status])
 
-    def reset(self, boats: wp.array) -> None:
-        wp.launch(reset_rig, dim=boats.shape[0], device=self.device, inputs=[boats],
+    def reset_masked(self, mask: wp.array, sheet: wp.array) -> None:
+        """Boats whose ``mask`` is non-zero: rudder and boom centred, propeller stopped, sheet (command and
+        actual limit) at their row of ``sheet`` [rad]. Launches only (graph-safe)."""
+        wp.launch(reset_rig, dim=self.count, device=self.device,
+                  inputs=[mask, sheet, self.parameters.sheet_limit_max],
                   outputs=[self.rudder_command, self.sheet_command, self.propeller_command, self.rudder_angle,
                            self.sheet_limit, self.boom_angle, self.boom_rate])
-
-    def set_sheet(self, boats: wp.array, angles: np.ndarray) -> None:
-        """Set the sheet command and the actual boom limit of ``boats`` to ``angles`` [rad] at once."""
-        limits = np.clip(angles, 0.0, self.parameters.sheet_limit_max).astype(np.float32)
-        values = wp.array(limits, dtype=float, device=self.device)
-        wp.launch(set_sheet, dim=boats.shape[0], device=self.device, inputs=[boats, values],
-                  outputs=[self.sheet_command, self.sheet_limit])
 
 
 class _PointBuoyancyModel:
     """The original twin's four-point buoyancy, as a force model."""
 
-    def __init__(self, eboat: EBoat, device, gravity: float):
-        self.parameters = eboat.point_buoyancy(device, gravity)
+    def __init__(self, eboat: EBoat, device, water):
+        self.parameters = eboat.point_buoyancy(device, water)
 
     def substep(self, simulator) -> None:
         fleet = simulator.fleet
@@ -85,67 +82,70 @@ class _PointBuoyancyModel:
                   outputs=[fleet.model_wrench])
 
 
-class EBoatTensors(NamedTuple):
-    """torch views of everything an agent reads or writes (bound once, no copies)."""
-
-    position: object
-    orientation: object
-    velocity: object
-    status: object
-    rudder_command: object
-    sheet_command: object
-    propeller_command: object
-    rudder_angle: object
-    boom_angle: object
-    wind_speed: object
-    """(N,) mean wind speed per environment [m/s] (writable)."""
-    wind_direction: object
-    """(N,) mean wind direction per environment [rad] (writable)."""
-    readings: object
-    """(N, 16) noisy sensor readings (``ocean_warp.sensors.CHANNEL_NAMES``)."""
-    truth: object
-    """(N, 16) exact sensor readings."""
-
-
 class EBoatSimulator:
-    """``count`` E-Boats, each in an environment of its own wind, on one ocean.
+    """``count`` E-Boats on one ocean, boat i in environment i with a wind of its own.
 
     Example::
 
-        sim = EBoatSimulator(256, wind=WindConfig(speed=7.0), device="cuda:0")
-        sim.reset(heading=0.3)
-        t = sim.tensors
-        t.sheet_command[:] = 0.6; t.rudder_command[:] = 0.1; t.propeller_command[:] = 0
+        config = EBoatSimulatorConfig(ocean=OceanConfig(significant_wave_height=0.5),
+                                      wind=WindConfig(speed=7.0, gust_speed_std=1.0))
+        sim = EBoatSimulator(config, 256, device="cuda:0")
+        sim.reset(heading=0.3, sheet=0.6)
+        control = sim.tensors.control          # torch views, no copies
+        control.rudder[:] = 0.1                # rad
         for _ in range(100):
             sim.step()
+        sim.tensors.state.readings             # (256, 16) noisy sensor readings
+
+    ``sim.state`` (what moves), ``sim.control`` (what is commanded) and ``sim.start`` (where a reset
+    puts a boat) name the Warp arrays; ``sim.tensors`` holds torch views of all three, bound here.
+    Resets: :meth:`reset` on the host (indices, numpy), :meth:`reset_masked` on the device.
     """
 
-    def __init__(self, count: int, *, eboat: EBoat | None = None, ocean: Ocean | None = None,
-                 wind: WindConfig | None = None, sensors: SensorConfig | None = None, dt: float = 0.05,
-                 substeps: int = 5, ocean_every_substep: bool = True, hydrodynamics: HydrodynamicsConfig | None = None,
-                 device=None, **simulator_options):
-        """``count`` boats; ``eboat`` (default: V-C, mesh hydrostatics); ``ocean`` (default: still water);
-        ``wind`` and ``sensors`` configs; steps of ``dt`` [s] in ``substeps``; ``hydrodynamics``
-        (default: the E-Boat's tuned water); other ``SimulatorConfig`` fields as keywords."""
-        self.eboat = eboat if eboat is not None else EBoat()
-        device = wp.get_device(device if device is not None else (ocean.device if ocean is not None else None))
-        self.device = device
+    def __init__(self, config: EBoatSimulatorConfig | None = None, count: int = 1, *, device=None,
+                 ocean: Ocean | None = None):
+        """``config`` (default: still water, 5 m/s steady wind, the V-C boat); ``count`` boats; ``ocean``: an
+        existing :class:`Ocean` to share instead of building ``config.ocean`` (its gravity must match)."""
+        self.config = config if config is not None else EBoatSimulatorConfig()
+        if not isinstance(self.config, EBoatSimulatorConfig):
+            raise ValueError(f"EBoatSimulator: config must be an EBoatSimulatorConfig, got {self.config!r}")
+        count = require_int_in_range("EBoatSimulator", "count", count, 1, 2**24)
+        config = self.config
+        self.device = wp.get_device(device if device is not None else (ocean.device if ocean is not None else None))
+        device = self.device
+        self.eboat = EBoat(config.boat)
         if ocean is None:
-            ocean = Ocean(OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0), device=device)
-        config = SimulatorConfig(dt=dt, substeps=substeps, ocean_every_substep=ocean_every_substep,
-                                 hydrodynamics=hydrodynamics or self.eboat.hydrodynamics,
-                                 hull_pressure=self.eboat.config.hydrostatics is Hydrostatics.MESH, **simulator_options)
+            ocean = Ocean(config.ocean, device=device)
         self.fleet = Fleet(self.eboat.boat_type, count, device=device)
-        self.wind = Wind(wind, count, substep=config.substep_dt, device=device)
-        self.rig = SailingRig(self.eboat, count, self.wind, device=device)
-        self.sensors = Sensors(sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
-                               gravity=config.hydrodynamics.gravity, device=device)
+        self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device)
+        self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water_density, device=device)
+        self.sensors = Sensors(config.sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
+                               gravity=config.gravity, device=device)
         models = [self.wind]
-        if self.eboat.config.hydrostatics is Hydrostatics.POINTS:
-            models.append(_PointBuoyancyModel(self.eboat, device, config.hydrodynamics.gravity))
+        if config.boat.hydrostatics is Hydrostatics.POINTS:
+            models.append(_PointBuoyancyModel(self.eboat, device, config.hydrodynamics))
         models += [self.rig, self.sensors]
-        self.simulator = Simulator(ocean, self.fleet, config, models=models)
-        self._tensors = None
+        self.simulator = Simulator(ocean, self.fleet, config.simulator_config(), models=models)
+        self.ocean = ocean
+
+        fleet, rig, wind, sensors = self.fleet, self.rig, self.wind, self.sensors
+        self.state = EBoatState(
+            position=fleet.position, orientation=fleet.orientation, velocity=fleet.velocity, status=fleet.status,
+            water_velocity=fleet.water_velocity, rudder_angle=rig.rudder_angle, sheet_limit=rig.sheet_limit,
+            boom_angle=rig.boom_angle, boom_rate=rig.boom_rate, wind_mean_speed=wind.mean_speed,
+            wind_mean_direction=wind.mean_direction, wind_speed=wind.speed, wind_direction=wind.direction,
+            wind_velocity=wind.velocity, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
+        """What moves (Warp arrays; see :class:`EBoatState` for units)."""
+        self.control = EBoatControl(rudder=rig.rudder_command, sheet=rig.sheet_command,
+                                    propeller=rig.propeller_command, wrench_world=fleet.wrench_world,
+                                    wrench_body=fleet.wrench_body)
+        """What is commanded (Warp arrays; see :class:`EBoatControl`)."""
+        self.start = EBoatStart.allocate(count, device)
+        """Where :meth:`reset_masked` puts each boat (Warp arrays; see :class:`EBoatStart`)."""
+        self.tensors = EBoatTensors(self.state.map(wp.to_torch), self.control.map(wp.to_torch),
+                                    self.start.map(wp.to_torch))
+        """torch views of ``state``, ``control`` and ``start``, bound once."""
+        self.reset()
 
     @property
     def count(self) -> int:
@@ -153,43 +153,60 @@ class EBoatSimulator:
 
     @property
     def time(self) -> float:
+        """Simulated time [s] (reads the device)."""
         return self.simulator.time
 
     def reset(self, boats=None, *, position=(0.0, 0.0, 0.0), heading=0.0, velocity=None, wind_speed=None,
               wind_direction=None, sheet=None) -> None:
-        """Put the chosen boats (None: all) upright at ``position`` [m] with ``heading`` [rad, yaw from
-        +x]; centre their rudder and boom, stop the propeller, and sheet in, or set the sheet (command
-        and actual limit) to ``sheet`` [rad, clipped to 0-90 deg]; optionally set their environments'
-        mean wind. Scalars and single rows broadcast."""
-        indices = require_indices("EBoatSimulator.reset", "boats", boats, self.count)
-        headings = require_per_item("EBoatSimulator.reset", "heading", heading, len(indices))
-        sheets = None if sheet is None else require_per_item("EBoatSimulator.reset", "sheet", sheet, len(indices))
-        angles = np.column_stack([np.zeros(len(indices)), np.zeros(len(indices)), headings])
-        self.fleet.reset(indices, position=position, orientation=quaternion_from_roll_pitch_yaw(angles),
-                         velocity=velocity)
-        if wind_speed is not None or wind_direction is not None:
-            speed = self.wind.mean_speed.numpy()[indices] if wind_speed is None else wind_speed
-            direction = self.wind.mean_direction.numpy()[indices] if wind_direction is None else wind_direction
-            self.wind.set(indices, speed=speed, direction=direction)
-        boats_wp = wp.array(indices, dtype=int, device=self.device)
+        """Host path of :meth:`reset_masked`. Put the chosen boats (None: all) upright at ``position`` [m]
+        with ``heading`` [rad, yaw from +x] and ``velocity`` (Fossen nu, default at rest); centre their
+        rudder and boom, stop the propeller, and sheet in, or set the sheet (command and actual limit) to
+        ``sheet`` [rad, clipped to 0-90 deg]; optionally set their environments' mean wind [m/s, rad]
+        (default: keep it). Scalars and single rows broadcast."""
+        owner = "EBoatSimulator.reset"
+        indices = require_indices(owner, "boats", boats, self.count)
+        k = len(indices)
+        headings = require_per_item(owner, "heading", heading, k)
+        sheets = require_per_item(owner, "sheet", 0.0 if sheet is None else sheet, k)
+        positions = require_rows(owner, "position", position, k, 3)
+        velocities = require_rows(owner, "velocity", np.zeros(6) if velocity is None else velocity, k, 6)
         with ordered_with_torch(self.device):
-            self.rig.reset(boats_wp)
-            if sheets is not None:
-                self.rig.set_sheet(boats_wp, sheets)
-        self.sensors.reset(indices, self.fleet)
+            old_speed = self.wind.mean_speed.numpy()[indices]
+            old_direction = self.wind.mean_direction.numpy()[indices]
+        speeds = old_speed if wind_speed is None else require_per_item(owner, "wind_speed", wind_speed, k)
+        directions = old_direction if wind_direction is None else require_per_item(owner, "wind_direction",
+                                                                                    wind_direction, k)
+        if np.any(speeds < 0.0):
+            raise ValueError(f"{owner}.wind_speed must be >= 0 [m/s]")
+        if k == 0:
+            return
+        orientations = quaternion_from_roll_pitch_yaw(np.column_stack([np.zeros(k), np.zeros(k), headings]))
+        n = self.count
+        for name, values in (("position", positions), ("orientation", orientations), ("velocity", velocities),
+                             ("sheet", sheets), ("wind_speed", speeds), ("wind_direction", directions)):
+            getattr(self.start, name).assign(rows_at(indices, values, n))
+        with ordered_with_torch(self.device):
+            self.reset_masked(mask_of(indices, n, self.device))
+
+    def reset_masked(self, mask: wp.array, start: EBoatStart | None = None) -> None:
+        """Device path of every reset: each boat whose ``mask`` (N,) int32 is non-zero goes to its row of
+        ``start`` (default ``self.start``): pose, velocity, sheet and its environment's mean wind, with
+        flags, external wrenches, slamming history, rudder, boom, propeller and gusts cleared, a new IMU
+        bias drawn, and every sensor channel read at once from the new state. Boats not in the mask are
+        untouched. It only launches kernels (no allocation, no host copy), so it can run inside a captured
+        graph; outside one, wrap it in ``ocean_warp.torch_streams.ordered_with_torch``."""
+        start = start if start is not None else self.start
+        self.fleet.reset_masked(mask, start.position, start.orientation, start.velocity)
+        self.wind.reset_masked(mask, start.wind_speed, start.wind_direction)
+        self.rig.reset_masked(mask, start.sheet)
+        self.sensors.reset_masked(mask, self.fleet)
 
     def step(self) -> None:
-        """Advance ``dt``: ocean, hull, wind, rig and integration every substep, sensors once."""
+        """Advance ``config.dt``: ocean, hull, wind, rig and integration every substep, sensors once (a
+        CUDA graph after the first call; ordered with torch's work on the device)."""
         self.simulator.step()
 
-    @property
-    def tensors(self) -> EBoatTensors:
-        if self._tensors is None:
-            fleet = self.fleet.tensors
-            self._tensors = EBoatTensors(
-                fleet.position, fleet.orientation, fleet.velocity, fleet.status,
-                *(wp.to_torch(a) for a in (self.rig.rudder_command, self.rig.sheet_command, self.rig.propeller_command,
-                                           self.rig.rudder_angle, self.rig.boom_angle, self.wind.mean_speed,
-                                           self.wind.mean_direction, self.sensors.readings, self.sensors.truth)))
-        return self._tensors
+    def launch_step(self) -> None:
+        """The launches of :meth:`step` without capture or torch ordering, to embed in a larger graph."""
+        self.simulator.launch_step()
 

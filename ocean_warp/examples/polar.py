@@ -76,7 +76,7 @@ def main(argv=None) -> None:
     eboat = EBoat()
     start = time.perf_counter()
     result = speed_polar(wind_speeds=args.wind_speeds, wind_angles_deg=np.arange(0.0, 180.0 + 1e-9, args.angle_step),
-                         sheets_deg=np.arange(0.0, 90.0 + 1e-9, args.sheet_step), settle_time=args.settle, eboat=eboat,
+                         sheets_deg=np.arange(0.0, 90.0 + 1e-9, args.sheet_step), settle_time=args.settle,
                          device=args.device)
     elapsed = time.perf_counter() - start
     os.makedirs(args.out, exist_ok=True)

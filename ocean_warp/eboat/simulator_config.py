@@ -1,0 +1,99 @@
+"""One config for an E-Boat simulation: the boat, the sea, the wind, the sensors, the water and the clock."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..hydrodynamics_config import HydrodynamicsConfig
+from ..ocean_config import OceanConfig
+from ..sensors import SensorConfig
+from ..simulator import SimulatorConfig
+from ..validation import require_in_range, require_int_in_range, require_positive
+from ..wind import WindConfig
+from .eboat import EBoatConfig, Hydrostatics, eboat_hydrodynamics
+
+__all__ = ["EBoatSimulatorConfig", "still_water"]
+
+
+def still_water() -> OceanConfig:
+    """A flat sea on the smallest grid (no waves to compute)."""
+    return OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0)
+
+
+@dataclasses.dataclass(frozen=True)
+class EBoatSimulatorConfig:
+    """Everything an :class:`~ocean_warp.eboat.EBoatSimulator` is built from; an environment config nests it.
+
+    ``water_density`` and ``gravity`` are the only ones used: the nested ``hydrodynamics`` (the hull's
+    pressure and drag), the rig (keel and rudder), the four-point buoyancy, the sensors and the
+    ``ocean`` (wave dispersion) take theirs from here. After construction ``hydrodynamics`` and
+    ``ocean`` hold these values, so ``config.hydrodynamics.water_density`` is the water the boat
+    sails in.
+    """
+
+    boat: EBoatConfig = dataclasses.field(default_factory=EBoatConfig)
+    """Which E-Boat (version, mesh or four-point hydrostatics, original tuning, hull shape)."""
+    ocean: OceanConfig = dataclasses.field(default_factory=still_water)
+    """The sea (default: still water). Its ``gravity`` is replaced by ``gravity``."""
+    wind: WindConfig = dataclasses.field(default_factory=WindConfig)
+    """Mean wind, gusts and height profile (every environment starts with this mean)."""
+    sensors: SensorConfig = dataclasses.field(default_factory=SensorConfig)
+    """Noise and rates of the boat's sensors."""
+    hydrodynamics: HydrodynamicsConfig = dataclasses.field(default_factory=eboat_hydrodynamics)
+    """The per-triangle water model (default: tuned for the E-Boat's hull). Its ``water_density`` and
+    ``gravity`` are replaced by the fields below."""
+    water_density: float = 1025.0
+    """[kg/m^3] of the water for hull, keel, rudder and buoyancy alike (sea water; the original twin: 997)."""
+    gravity: float = 9.81
+    """[m/s^2] for the boats, the waves and the accelerometers."""
+    dt: float = 0.05
+    """Duration of one ``step()`` [s]; the sensors read once per step."""
+    substeps: int = 5
+    """Substeps per step: ocean, water forces, wind, rig and integration run every dt / substeps."""
+    ocean_every_substep: bool = True
+    """Evaluate the ocean every substep (True) or once per step (False, cheaper)."""
+    max_tilt: float = math.pi / 2
+    """A boat tilted further than this from upright is flagged CAPSIZED [rad]."""
+    max_altitude: float = 20.0
+    """A boat whose origin rises this far above still water is flagged FLYING [m]."""
+    max_depth: float = 50.0
+    """A boat whose origin sinks this deep is flagged SUNK [m]."""
+    block_dim: int | None = None
+    """Threads per boat in the hull pass; None: 1 on the CPU, 128 on CUDA."""
+    capture_graph: bool = True
+    """On CUDA, capture a step as a graph on its first call and replay it."""
+
+    def __post_init__(self):
+        owner = "EBoatSimulatorConfig"
+        for name, kind in (("boat", EBoatConfig), ("ocean", OceanConfig), ("wind", WindConfig),
+                           ("sensors", SensorConfig), ("hydrodynamics", HydrodynamicsConfig)):
+            if not isinstance(getattr(self, name), kind):
+                raise ValueError(f"{owner}.{name} must be a {kind.__name__}, got {getattr(self, name)!r}")
+        density = require_positive(owner, "water_density", self.water_density, unit=" [kg/m^3]")
+        gravity = require_positive(owner, "gravity", self.gravity, unit=" [m/s^2]")
+        object.__setattr__(self, "water_density", density)
+        object.__setattr__(self, "gravity", gravity)
+        object.__setattr__(self, "dt", require_positive(owner, "dt", self.dt, unit=" [s]"))
+        object.__setattr__(self, "substeps", require_int_in_range(owner, "substeps", self.substeps, 1, 1000))
+        object.__setattr__(self, "max_tilt", require_in_range(owner, "max_tilt", self.max_tilt, 0.0, math.pi,
+                                                              unit=" [rad]"))
+        object.__setattr__(self, "hydrodynamics", dataclasses.replace(self.hydrodynamics, water_density=density,
+                                                                      gravity=gravity))
+        if self.ocean.gravity != gravity:
+            object.__setattr__(self, "ocean", dataclasses.replace(self.ocean, gravity=gravity))
+        # The rest is checked where it is used, with the same messages.
+        self.simulator_config()
+
+    @property
+    def substep_dt(self) -> float:
+        """[s]"""
+        return self.dt / self.substeps
+
+    def simulator_config(self) -> SimulatorConfig:
+        """The generic :class:`~ocean_warp.SimulatorConfig` this config amounts to."""
+        return SimulatorConfig(dt=self.dt, substeps=self.substeps, hydrodynamics=self.hydrodynamics,
+                               ocean_every_substep=self.ocean_every_substep,
+                               hull_pressure=self.boat.hydrostatics is Hydrostatics.MESH,
+                               max_altitude=self.max_altitude, max_depth=self.max_depth, max_tilt=self.max_tilt,
+                               block_dim=self.block_dim, capture_graph=self.capture_graph)
