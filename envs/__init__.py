@@ -1,4 +1,34 @@
-"""Reinforcement-learning environments on top of the ocean_warp Simulator (installed as ``ocean_warp.envs``).
+"""Reinforcement-learning environments on the E-Boat simulator (installed as ``ocean_warp.envs``).
 
-Empty for now: batched tasks, the rsl-rl VecEnv and gymnasium environments come with later issues.
+- ``SailingEnv`` (``core``): N boats, one task, one captured decision step with same-step resets.
+- Tasks (``tasks``): ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours) and
+  ``MissionConfig`` (the six-waypoint "BCDACA" mission).
+- Interfaces: ``RslRlVecEnv`` (rsl-rl), ``SailingVectorEnv`` and ``SailingEnvSingle`` (gymnasium, with the
+  ids ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0`` and
+  ``ocean_warp/EBoatMission-v0``), ``Sb3VecEnv`` (stable-baselines3, an optional extra:
+  ``ocean_warp.envs.sb3_env``).
+- ``SailingAutopilot``: a classical sailing autopilot that runs any task in place of a policy.
 """
+
+from .core import EnvBuffers, SailingEnv, environment_origins
+from .tasks import (
+    BCDACA_ROUTE,
+    MISSION_WAYPOINTS,
+    MissionConfig,
+    ObservationSet,
+    RewardConfig,
+    StartConfig,
+    TaskConfig,
+    WaypointConfig,
+    WaypointPlusConfig,
+)
+
+__all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
+           "MissionConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
+
+try:  # the interfaces and the autopilot, as their modules land
+    from .registration import register_envs
+
+    register_envs()
+except ImportError:  # pragma: no cover
+    pass

@@ -63,20 +63,24 @@ def update_wind(
     counter: wp.array(dtype=int),
     mean_speed: wp.array(dtype=float),
     mean_direction: wp.array(dtype=float),
+    gust_scale: wp.array(dtype=float),
     speed: wp.array(dtype=float),
     direction: wp.array(dtype=float),
     velocity: wp.array(dtype=wp.vec3),
 ):
-    """One substep of the gust processes per environment; ``velocity`` gets the wind vector at the
+    """One substep of the gust processes per environment, their standard deviations scaled by the
+    environment's ``gust_scale`` (1: the config's); ``velocity`` gets the wind vector at the
     reference height [m/s, world]. ``counter`` (1,) numbers the substeps for the random stream; the
     caller advances it. A NaN mean stays NaN (``wp.max`` would hide it), for the rig to report."""
     env = wp.tid()
     state = stream_state(gusts.seed, WIND_GUSTS, counter[0], env)
-    new_speed = mean_speed[env] + (speed[env] - mean_speed[env]) * gusts.speed_decay + gusts.speed_noise * wp.randn(state)
+    scale = gust_scale[env]
+    new_speed = mean_speed[env] + (speed[env] - mean_speed[env]) * gusts.speed_decay
+    new_speed += scale * gusts.speed_noise * wp.randn(state)
     if new_speed < 0.0:
         new_speed = 0.0
     new_direction = mean_direction[env] + (direction[env] - mean_direction[env]) * gusts.direction_decay
-    new_direction += gusts.direction_noise * wp.randn(state)
+    new_direction += scale * gusts.direction_noise * wp.randn(state)
     speed[env] = new_speed
     direction[env] = new_direction
     velocity[env] = wind_vector(new_speed, new_direction)
@@ -87,19 +91,22 @@ def reset_wind(
     mask: wp.array(dtype=wp.int32),
     new_mean_speed: wp.array(dtype=float),
     new_mean_direction: wp.array(dtype=float),
+    new_gust_scale: wp.array(dtype=float),
     mean_speed: wp.array(dtype=float),
     mean_direction: wp.array(dtype=float),
+    gust_scale: wp.array(dtype=float),
     speed: wp.array(dtype=float),
     direction: wp.array(dtype=float),
     velocity: wp.array(dtype=wp.vec3),
 ):
-    """Every environment whose ``mask`` is non-zero gets its row of the new mean wind [m/s, rad], and its
-    gusts restart from that mean."""
+    """Every environment whose ``mask`` is non-zero gets its row of the new mean wind [m/s, rad] and
+    gust scale, and its gusts restart from that mean."""
     env = wp.tid()
     if mask[env] == 0:
         return
     mean_speed[env] = new_mean_speed[env]
     mean_direction[env] = new_mean_direction[env]
+    gust_scale[env] = new_gust_scale[env]
     speed[env] = new_mean_speed[env]
     direction[env] = new_mean_direction[env]
     velocity[env] = wind_vector(new_mean_speed[env], new_mean_direction[env])

@@ -91,6 +91,8 @@ class Wind:
         """(N,) mean speed per environment [m/s]."""
         self.mean_direction = full(self.config.direction)
         """(N,) mean direction per environment [rad]."""
+        self.gust_scale = full(1.0)
+        """(N,) factor on the config's gust standard deviations per environment (1: as configured)."""
         self.speed = full(self.config.speed)
         """(N,) current speed with gusts [m/s]."""
         self.direction = full(self.config.direction)
@@ -104,28 +106,32 @@ class Wind:
 
     def substep(self, simulator) -> None:
         wp.launch(update_wind, dim=self.count, device=self.device,
-                  inputs=[self.gusts, self._counter, self.mean_speed, self.mean_direction],
+                  inputs=[self.gusts, self._counter, self.mean_speed, self.mean_direction, self.gust_scale],
                   outputs=[self.speed, self.direction, self.velocity])
         wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
-    def set(self, envs=None, *, speed, direction) -> None:
+    def set(self, envs=None, *, speed, direction, gust_scale=1.0) -> None:
         """Set the mean wind of the chosen environments (None: all) and restart their gusts from it:
-        ``speed`` [m/s] and ``direction`` [rad] per environment or one value for all."""
+        ``speed`` [m/s], ``direction`` [rad] and ``gust_scale`` (on the config's gust deviations) per
+        environment or one value for all."""
         indices = require_indices("Wind.set", "envs", envs, self.count)
         speeds = require_per_item("Wind.set", "speed", speed, len(indices))
         directions = require_per_item("Wind.set", "direction", direction, len(indices))
-        if np.any(speeds < 0):
-            raise ValueError("Wind.set.speed must be >= 0 [m/s]")
+        scales = require_per_item("Wind.set", "gust_scale", gust_scale, len(indices))
+        if np.any(speeds < 0) or np.any(scales < 0):
+            raise ValueError("Wind.set: speed [m/s] and gust_scale must be >= 0")
         if not indices.size:
             return
         device = self.device
         with ordered_with_torch(device):
             self.reset_masked(mask_of(indices, self.count, device),
                               wp.array(rows_at(indices, speeds, self.count), dtype=float, device=device),
-                              wp.array(rows_at(indices, directions, self.count), dtype=float, device=device))
+                              wp.array(rows_at(indices, directions, self.count), dtype=float, device=device),
+                              wp.array(rows_at(indices, scales, self.count), dtype=float, device=device))
 
-    def reset_masked(self, mask: wp.array, speed: wp.array, direction: wp.array) -> None:
+    def reset_masked(self, mask: wp.array, speed: wp.array, direction: wp.array, gust_scale: wp.array) -> None:
         """Device path of :meth:`set`: environments whose ``mask`` (N,) int32 is non-zero take their row of
-        ``speed`` (N,) [m/s] and ``direction`` (N,) [rad] as the new mean; launches only (graph-safe)."""
-        wp.launch(reset_wind, dim=self.count, device=self.device, inputs=[mask, speed, direction],
-                  outputs=[self.mean_speed, self.mean_direction, self.speed, self.direction, self.velocity])
+        ``speed`` (N,) [m/s], ``direction`` (N,) [rad] and ``gust_scale`` (N,); launches only (graph-safe)."""
+        wp.launch(reset_wind, dim=self.count, device=self.device, inputs=[mask, speed, direction, gust_scale],
+                  outputs=[self.mean_speed, self.mean_direction, self.gust_scale, self.speed, self.direction,
+                           self.velocity])

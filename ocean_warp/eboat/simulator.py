@@ -134,7 +134,7 @@ class EBoatSimulator:
             water_velocity=fleet.water_velocity, rudder_angle=rig.rudder_angle, sheet_limit=rig.sheet_limit,
             boom_angle=rig.boom_angle, boom_rate=rig.boom_rate, wind_mean_speed=wind.mean_speed,
             wind_mean_direction=wind.mean_direction, wind_speed=wind.speed, wind_direction=wind.direction,
-            wind_velocity=wind.velocity, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
+            wind_velocity=wind.velocity, gust_scale=wind.gust_scale, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
         """What moves (Warp arrays; see :class:`EBoatState` for units)."""
         self.control = EBoatControl(rudder=rig.rudder_command, sheet=rig.sheet_command,
                                     propeller=rig.propeller_command, wrench_world=fleet.wrench_world,
@@ -173,6 +173,7 @@ class EBoatSimulator:
         with ordered_with_torch(self.device):
             old_speed = self.wind.mean_speed.numpy()[indices]
             old_direction = self.wind.mean_direction.numpy()[indices]
+            gust_scales = self.wind.gust_scale.numpy()[indices]
         speeds = old_speed if wind_speed is None else require_per_item(owner, "wind_speed", wind_speed, k)
         directions = old_direction if wind_direction is None else require_per_item(owner, "wind_direction",
                                                                                     wind_direction, k)
@@ -183,7 +184,8 @@ class EBoatSimulator:
         orientations = quaternion_from_roll_pitch_yaw(np.column_stack([np.zeros(k), np.zeros(k), headings]))
         n = self.count
         for name, values in (("position", positions), ("orientation", orientations), ("velocity", velocities),
-                             ("sheet", sheets), ("wind_speed", speeds), ("wind_direction", directions)):
+                             ("sheet", sheets), ("wind_speed", speeds), ("wind_direction", directions),
+                             ("gust_scale", gust_scales)):
             getattr(self.start, name).assign(rows_at(indices, values, n))
         with ordered_with_torch(self.device):
             self.reset_masked(mask_of(indices, n, self.device))
@@ -197,7 +199,7 @@ class EBoatSimulator:
         graph; outside one, wrap it in ``ocean_warp.torch_streams.ordered_with_torch``."""
         start = start if start is not None else self.start
         self.fleet.reset_masked(mask, start.position, start.orientation, start.velocity)
-        self.wind.reset_masked(mask, start.wind_speed, start.wind_direction)
+        self.wind.reset_masked(mask, start.wind_speed, start.wind_direction, start.gust_scale)
         self.rig.reset_masked(mask, start.sheet)
         self.sensors.reset_masked(mask, self.fleet)
 

@@ -64,6 +64,8 @@ class EBoatState(_Named):
     """(N,) current true wind direction, gusts included [rad]."""
     wind_velocity: Any
     """(N,) vec3: current true wind at the reference height, world frame [m/s]."""
+    gust_scale: Any
+    """(N,) factor on the wind config's gust standard deviations per environment."""
     readings: Any
     """(N, 16) noisy sensor readings, held between refreshes (columns: ``ocean_warp.CHANNEL_NAMES``)."""
     truth: Any
@@ -104,6 +106,8 @@ class EBoatStart(_Named):
     """(N,) new mean true wind speed [m/s]."""
     wind_direction: Any
     """(N,) new mean true wind direction (towards) [rad]."""
+    gust_scale: Any
+    """(N,) factor on the wind config's gust standard deviations (1: as configured)."""
 
     @classmethod
     def allocate(cls, count: int, device) -> "EBoatStart":
@@ -114,7 +118,8 @@ class EBoatStart(_Named):
                    velocity=wp.zeros(count, dtype=vec6, device=device),
                    sheet=wp.zeros(count, dtype=float, device=device),
                    wind_speed=wp.zeros(count, dtype=float, device=device),
-                   wind_direction=wp.zeros(count, dtype=float, device=device))
+                   wind_direction=wp.zeros(count, dtype=float, device=device),
+                   gust_scale=wp.ones(count, dtype=float, device=device))
 
 
 class EBoatTensors(NamedTuple):

@@ -1,0 +1,311 @@
+"""The batched sailing environment: N E-Boats, one task, one decision per :meth:`SailingEnv.step`.
+
+A step runs, on the simulator's device: the actions to actuator commands, ``steps_per_decision``
+physics steps, the reward and episode-end kernel, the observation kernel (the final observations),
+a start drawn for every environment that ended, the simulator's masked reset of exactly those, and the
+observation kernel again (what the policy sees next). On CUDA all of it is one captured graph; nothing
+in it allocates or waits for the host. The results are Warp arrays that torch reads through views
+bound in the constructor (``env.buffers``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+import torch
+import warp as wp
+
+from ocean_warp.eboat import EBoatSimulator, Hydrostatics
+from ocean_warp.fleet import BoatStatus
+from ocean_warp.torch_streams import ordered_with_torch
+from ocean_warp.validation import require_int_in_range
+
+from .task_kernels import (
+    POLICY_OBS,
+    PRIVILEGED_OBS,
+    StartDistribution,
+    TaskParameters,
+    apply_actions,
+    draw_starts,
+    evaluate,
+    observe,
+)
+from .tasks import ObservationSet, TaskConfig
+
+__all__ = ["SailingEnv", "EnvBuffers", "environment_origins"]
+
+
+@dataclasses.dataclass(frozen=True)
+class EnvBuffers:
+    """torch views of the environment's Warp arrays (no copies), N environments."""
+
+    actions: Any
+    """(N, 3) float32: the last actions, in [-1, 1] (see ``ocean_warp.envs.tasks``)."""
+    policy_obs: Any
+    """(N, P) float32: what the policy sees now (after the same-step reset of ended environments)."""
+    critic_obs: Any
+    """(N, P + 12) float32: the policy's observation and privileged truth."""
+    final_policy_obs: Any
+    """(N, P) float32: the observation at the end of the last decision, before any reset."""
+    final_critic_obs: Any
+    """(N, P + 12) float32: likewise for the critic."""
+    reward: Any
+    """(N,) float32: the reward of the last decision."""
+    terminated: Any
+    """(N,) bool: the episode ended in a terminal state (waypoint or mission done, lost, flagged)."""
+    time_out: Any
+    """(N,) bool: the episode reached its time limit (not a terminal state)."""
+    done: Any
+    """(N,) bool: terminated or time_out; these environments were reset in the same step."""
+    episode_length: Any
+    """(N,) int32: decisions taken in the current episode."""
+    episode_return: Any
+    """(N,) float32: reward summed over the current episode."""
+    target: Any
+    """(N, 3) float32: world position of each environment's current waypoint [m]."""
+    origin: Any
+    """(N, 3) float32: world position of each environment's origin [m]."""
+    final_return: Any
+    """(N,) float32: return of the last episode that ended in each environment."""
+    final_length: Any
+    """(N,) int32: its length in decisions."""
+    final_success: Any
+    """(N,) float32: 1 if it reached its last waypoint."""
+    final_status: Any
+    """(N,) int32: the simulator's ``BoatStatus`` bits when it ended (0: healthy)."""
+    final_waypoints: Any
+    """(N,) int32: waypoints it reached."""
+
+
+def environment_origins(count: int, tile_size: float, spread: bool) -> np.ndarray:
+    """(count, 3) origins spread evenly over the periodic ocean tile [m] (a low-discrepancy R2 sequence,
+    so any number of environments covers the tile without clumps); zeros when not ``spread``."""
+    if not spread:
+        return np.zeros((count, 3), dtype=np.float32)
+    plastic = 1.324717957244746  # x^3 = x + 1: the R2 sequence's generator
+    steps = np.arange(count, dtype=np.float64)[:, None] * np.array([1.0 / plastic, 1.0 / plastic**2])
+    xy = np.mod(0.5 + steps, 1.0) * tile_size
+    return np.column_stack([xy, np.zeros(count)]).astype(np.float32)
+
+
+class SailingEnv:
+    """``num_envs`` E-Boats sailing one task (a :class:`~ocean_warp.envs.tasks.TaskConfig`), batched.
+
+    Example::
+
+        env = SailingEnv(WaypointConfig(), 4096, device="cuda:0", seed=1)
+        obs = env.buffers.policy_obs                   # torch view, updated in place by step()
+        for _ in range(1000):
+            env.step(policy(obs))
+            env.buffers.reward, env.buffers.done       # views, too
+    """
+
+    num_actions = 3
+
+    def __init__(self, task: TaskConfig, num_envs: int, *, device=None, seed: int = 0):
+        if not isinstance(task, TaskConfig):
+            raise ValueError(f"SailingEnv: task must be a TaskConfig (WaypointConfig, ...), got {task!r}")
+        self.task = task
+        self.num_envs = require_int_in_range("SailingEnv", "num_envs", num_envs, 1, 2**24)
+        self.seed = require_int_in_range("SailingEnv", "seed", seed, 0, 2**31 - 1)
+        self.simulator = EBoatSimulator(task.simulator, self.num_envs, device=device)
+        self.device = self.simulator.device
+        self.torch_device = torch.device(wp.device_to_torch(self.device))
+        self.num_policy_obs = POLICY_OBS[ObservationSet(task.observation).value]
+        self.num_critic_obs = self.num_policy_obs + PRIVILEGED_OBS
+        self.max_episode_length = task.max_episode_length
+        self.decision_period = task.decision_period
+        self.steps_per_decision = task.steps_per_decision
+        self.parameters = _task_parameters(task)
+        self.start_distribution = _start_distribution(task, self._start_height())
+
+        n, device = self.num_envs, self.device
+        zeros = lambda shape, dtype=float: wp.zeros(shape, dtype=dtype, device=device)  # noqa: E731
+        self._seed = wp.array([self.seed], dtype=int, device=device)
+        self.origin = wp.array(environment_origins(n, task.simulator.ocean.tile_size, task.ocean_spacing),
+                               dtype=wp.vec3, device=device)
+        route = np.zeros((n, task.route_length, 3), dtype=np.float32)
+        if task.route is not None:
+            route[:, :, :2] = np.array(task.route, dtype=np.float32)
+        self.route = wp.array(route, dtype=wp.vec3, device=device)
+        """(N, R) waypoints of each environment, from its origin [m]."""
+        self.actions = zeros((n, 3))
+        self.last_action = zeros((n, 3))
+        self.policy_obs = zeros((n, self.num_policy_obs))
+        self.critic_obs = zeros((n, self.num_critic_obs))
+        self.final_policy_obs = zeros((n, self.num_policy_obs))
+        self.final_critic_obs = zeros((n, self.num_critic_obs))
+        self.reward = zeros(n)
+        self.terminated = zeros(n, wp.bool)
+        self.time_out = zeros(n, wp.bool)
+        self.done = zeros(n, wp.bool)
+        self.reset_mask = zeros(n, wp.int32)
+        self.episode_length = zeros(n, wp.int32)
+        self.episode_return = zeros(n)
+        self.episode_count = zeros(n, int)
+        self.target_index = zeros(n, int)
+        self.leg_start = zeros(n, wp.vec3)
+        self.previous_distance = zeros(n)
+        self.target_world = zeros(n, wp.vec3)
+        self.final_return = zeros(n)
+        self.final_length = zeros(n, wp.int32)
+        self.final_success = zeros(n)
+        self.final_status = zeros(n, int)
+        self.final_waypoints = zeros(n, int)
+        self._everyone = wp.ones(n, dtype=wp.int32, device=device)
+
+        view = wp.to_torch
+        self.buffers = EnvBuffers(
+            actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
+            final_policy_obs=view(self.final_policy_obs), final_critic_obs=view(self.final_critic_obs),
+            reward=view(self.reward), terminated=view(self.terminated), time_out=view(self.time_out),
+            done=view(self.done), episode_length=view(self.episode_length), episode_return=view(self.episode_return),
+            target=view(self.target_world), origin=view(self.origin), final_return=view(self.final_return),
+            final_length=view(self.final_length), final_success=view(self.final_success),
+            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints))
+        """torch views of the results, bound once (see :class:`EnvBuffers`)."""
+        self._graph = None
+        self.reset()
+
+    # --- the decision step ------------------------------------------------------------------------
+    def step(self, actions: torch.Tensor | None = None) -> None:
+        """One decision: ``actions`` (N, 3) in [-1, 1] (None: the ones already in ``buffers.actions``),
+        ``decision_period`` of simulated time, rewards and episode ends, and the same-step reset of the
+        environments that ended. Results are in ``buffers``; asynchronous on CUDA, ordered with torch."""
+        if actions is not None:
+            if tuple(actions.shape) != (self.num_envs, self.num_actions):
+                raise ValueError(f"SailingEnv.step: actions must have shape ({self.num_envs}, {self.num_actions}), "
+                                 f"got {tuple(actions.shape)}")
+            self.buffers.actions.copy_(actions)
+        with ordered_with_torch(self.device):
+            if not (self.device.is_cuda and self.task.simulator.capture_graph):
+                self._launch_decision()
+            else:
+                if self._graph is None:
+                    with wp.ScopedCapture(device=self.device) as capture:
+                        self._launch_decision()
+                    self._graph = capture.graph
+                wp.capture_launch(self._graph)
+
+    def _launch_decision(self) -> None:
+        sim, device, n = self.simulator, self.device, self.num_envs
+        wp.launch(apply_actions, dim=n, device=device, inputs=[self.actions],
+                  outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
+        for _ in range(self.steps_per_decision):
+            sim.launch_step()
+        state = sim.state
+        wp.launch(evaluate, dim=n, device=device,
+                  inputs=[self.parameters, self.actions, state.status, state.position, self.origin, self.route],
+                  outputs=[self.target_index, self.leg_start, self.previous_distance, self.last_action,
+                           self.episode_length, self.episode_return, self.reward, self.terminated, self.time_out,
+                           self.done, self.reset_mask, self.target_world, self.final_return, self.final_length,
+                           self.final_success, self.final_status, self.final_waypoints])
+        self._observe(self.final_policy_obs, self.final_critic_obs)
+        self._start_episodes(self.reset_mask)
+        self._observe(self.policy_obs, self.critic_obs)
+
+    def _observe(self, policy: wp.array, critic: wp.array) -> None:
+        state = self.simulator.state
+        wp.launch(observe, dim=self.num_envs, device=self.device,
+                  inputs=[self.parameters, state.position, state.orientation, state.velocity, state.wind_velocity,
+                          state.truth, state.readings, state.rudder_angle, state.boom_angle, state.sheet_limit,
+                          self.target_world, self.leg_start, self.origin, self.target_index, self.last_action],
+                  outputs=[policy, critic])
+
+    def _start_episodes(self, mask: wp.array) -> None:
+        start = self.simulator.start
+        wp.launch(draw_starts, dim=self.num_envs, device=self.device,
+                  inputs=[self.parameters, self.start_distribution, self._seed, mask, self.origin],
+                  outputs=[self.episode_count, self.route, self.target_index, self.leg_start, self.previous_distance,
+                           self.last_action, self.episode_length, self.episode_return, self.target_world,
+                           start.position, start.orientation, start.velocity, start.sheet, start.wind_speed,
+                           start.wind_direction, start.gust_scale])
+        self.simulator.reset_masked(mask)
+
+    # --- host calls --------------------------------------------------------------------------------
+    def reset(self, seed: int | None = None) -> None:
+        """Start a new episode in every environment; with ``seed``, restart every environment's random
+        stream from it (one seed, one sequence of episodes)."""
+        with ordered_with_torch(self.device):
+            if seed is not None:
+                self.seed = require_int_in_range("SailingEnv.reset", "seed", seed, 0, 2**31 - 1)
+                self._seed.fill_(self.seed)
+                self.episode_count.zero_()
+            self.terminated.zero_()
+            self.time_out.zero_()
+            self.done.zero_()
+            self._start_episodes(self._everyone)
+            self._observe(self.policy_obs, self.critic_obs)
+            wp.copy(self.final_policy_obs, self.policy_obs)
+            wp.copy(self.final_critic_obs, self.critic_obs)
+
+    def episode_log(self) -> dict[str, torch.Tensor]:
+        """Statistics of the episodes that ended in the last step (one host synchronisation to find
+        them): mean return and length, the rates of success and of each simulator flag, and how many
+        ended. Keys start with "/" (rsl-rl's namespace convention)."""
+        b = self.buffers
+        ended = torch.nonzero(b.done, as_tuple=False).squeeze(1)
+        status = b.final_status.index_select(0, ended)
+        log = {
+            "/episode/return": b.final_return.index_select(0, ended),
+            "/episode/length": b.final_length.index_select(0, ended).float(),
+            "/episode/success_rate": b.final_success.index_select(0, ended),
+            "/episode/waypoints": b.final_waypoints.index_select(0, ended).float(),
+            "/episode/time_out_rate": b.time_out.index_select(0, ended).float(),
+        }
+        for name, bit in (("capsized", BoatStatus.CAPSIZED), ("nonfinite", BoatStatus.NONFINITE),
+                          ("sunk", BoatStatus.SUNK), ("flying", BoatStatus.FLYING), ("bad_input", BoatStatus.BAD_INPUT)):
+            log[f"/episode/{name}_rate"] = ((status & bit) != 0).float()
+        log["/episode/ended"] = ended.numel() * torch.ones((), device=b.done.device)
+        return log
+
+    def _start_height(self) -> float:
+        if self.task.start_height is not None:
+            return self.task.start_height
+        if self.task.simulator.boat.hydrostatics is Hydrostatics.POINTS:
+            return 0.0
+        return self.simulator.eboat.rest_height("cpu", self.task.simulator.hydrodynamics)
+
+
+def _task_parameters(task: TaskConfig) -> TaskParameters:
+    p = TaskParameters()
+    r = task.reward
+    p.route_length = task.route_length
+    p.reach_radius = task.reach_radius
+    p.lost_margin = task.lost_margin
+    p.progress_scale = r.progress_scale
+    p.propeller_gain = r.propeller_gain
+    p.propeller_cost = r.propeller_cost
+    p.reach_bonus = r.reach_bonus
+    p.lost_penalty = r.lost_penalty
+    p.flagged_penalty = r.flagged_penalty
+    p.smoothness = r.smoothness
+    p.time_cost = r.time_cost
+    p.max_episode_length = task.max_episode_length
+    p.observation_set = 0 if ObservationSet(task.observation) is ObservationSet.SEED else 1
+    return p
+
+
+def _start_distribution(task: TaskConfig, start_height: float) -> StartDistribution:
+    s, d = task.start, StartDistribution()
+    rad = math.radians
+    d.heading_low, d.heading_high = rad(s.heading_deg[0]), rad(s.heading_deg[1])
+    d.heading_step = rad(s.heading_step_deg)
+    d.heading_toward_waypoint = int(s.heading_toward_waypoint)
+    d.wind_speed_low, d.wind_speed_high = s.wind_speed
+    d.wind_direction_low, d.wind_direction_high = rad(s.wind_direction_deg[0]), rad(s.wind_direction_deg[1])
+    d.wind_direction_step = rad(s.wind_direction_step_deg)
+    d.gust_scale_low, d.gust_scale_high = s.gust_scale
+    d.waypoint_distance_low, d.waypoint_distance_high = s.waypoint_distance
+    d.waypoint_bearing_low = rad(s.waypoint_bearing_deg[0])
+    d.waypoint_bearing_high = rad(s.waypoint_bearing_deg[1])
+    d.random_waypoint = int(task.route is None)
+    d.start_point = wp.vec3(task.start_point[0], task.start_point[1], 0.0)
+    d.position_jitter = task.start.position_jitter
+    d.start_height = start_height
+    d.surge_low, d.surge_high = s.surge_speed
+    d.sheet_low, d.sheet_high = rad(s.sheet_deg[0]), rad(s.sheet_deg[1])
+    return d

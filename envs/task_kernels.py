@@ -1,0 +1,378 @@
+"""The kernels of a sailing task, one thread per environment: actions to commands, rewards and episode
+ends, observations, and the start of a new episode for the environments that ended.
+
+Conventions: positions of waypoints are relative to the environment's origin on the periodic ocean;
+the boat's position is world ENU. Bearings are measured from the bow, positive to port [rad].
+"""
+
+from __future__ import annotations
+
+import warp as wp
+
+from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
+
+__all__ = ["TaskParameters", "StartDistribution", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions", "evaluate",
+           "observe", "draw_starts"]
+
+EPISODE_START = wp.constant(0x3C6E_F372)
+"""Tag of the random stream that draws each episode's start."""
+SEED_OBS = wp.constant(5)
+PLUS_OBS = wp.constant(15)
+PRIVILEGED_OBS = 12
+"""Values the critic sees beyond the policy's observation."""
+POLICY_OBS = {"seed": 5, "plus": 15}
+MAX_LEVEL = wp.constant(5)
+RUDDER_LIMIT = wp.constant(60.0 / (180.0 / 3.141592653589793))
+SHEET_HALF = wp.constant(45.0 / (180.0 / 3.141592653589793))
+
+
+@wp.struct
+class TaskParameters:
+    route_length: int
+    """Waypoints per episode."""
+    reach_radius: float
+    """[m]"""
+    lost_margin: float
+    """[m] beyond the leg's length."""
+    progress_scale: float
+    """[m]"""
+    propeller_gain: float
+    propeller_cost: float
+    reach_bonus: float
+    lost_penalty: float
+    flagged_penalty: float
+    smoothness: float
+    time_cost: float
+    max_episode_length: int
+    """Decisions before a time-out."""
+    observation_set: int
+    """0: the seed's 5 values, 1: Waypoint+'s 15."""
+
+
+@wp.struct
+class StartDistribution:
+    """The start of an episode (radians and metres; see ``envs.tasks.StartConfig``)."""
+
+    heading_low: float
+    heading_high: float
+    heading_step: float
+    heading_toward_waypoint: int
+    wind_speed_low: float
+    wind_speed_high: float
+    wind_direction_low: float
+    wind_direction_high: float
+    wind_direction_step: float
+    gust_scale_low: float
+    gust_scale_high: float
+    waypoint_distance_low: float
+    waypoint_distance_high: float
+    waypoint_bearing_low: float
+    waypoint_bearing_high: float
+    random_waypoint: int
+    """1: draw the first (only) waypoint per episode; 0: the route is fixed."""
+    start_point: wp.vec3
+    position_jitter: float
+    start_height: float
+    surge_low: float
+    surge_high: float
+    sheet_low: float
+    sheet_high: float
+
+
+@wp.func
+def propeller_level(action: float) -> int:
+    """int(5 a), truncated toward zero, of a clipped action."""
+    return int(float(MAX_LEVEL) * wp.clamp(action, -1.0, 1.0))
+
+
+@wp.func
+def draw(state: wp.uint32, low: float, high: float, step: float) -> float:
+    """Uniform on [low, high], or on the grid low + k step below high (inclusive of high when the grid
+    does not close a circle) when ``step`` > 0."""
+    if step <= 0.0:
+        return low + (high - low) * wp.randf(state)
+    cells = int(wp.floor((high - low) / step + 1.0e-4))
+    if wp.abs(high - low - 2.0 * PI) > 1.0e-4:
+        cells = cells + 1
+    cells = wp.max(cells, 1)
+    return low + step * float(wp.randi(state, 0, cells))
+
+
+@wp.kernel(enable_backward=False)
+def apply_actions(
+    actions: wp.array2d(dtype=float),
+    rudder: wp.array(dtype=float),
+    sheet: wp.array(dtype=float),
+    propeller: wp.array(dtype=int),
+):
+    """Actions in [-1, 1] (clipped) to commands: propeller int(5 a0), sheet (a0 + 1) 45 deg, rudder 60 deg
+    a2. A non-finite action becomes a NaN rudder command, which the simulator flags as bad input."""
+    env = wp.tid()
+    a0 = actions[env, 0]
+    a1 = actions[env, 1]
+    a2 = actions[env, 2]
+    if not (wp.isfinite(a0) and wp.isfinite(a1) and wp.isfinite(a2)):
+        rudder[env] = wp.nan
+        propeller[env] = 0
+        return
+    propeller[env] = propeller_level(a0)
+    sheet[env] = (wp.clamp(a1, -1.0, 1.0) + 1.0) * SHEET_HALF
+    rudder[env] = RUDDER_LIMIT * wp.clamp(a2, -1.0, 1.0)
+
+
+@wp.func
+def planar(v: wp.vec3) -> wp.vec3:
+    return wp.vec3(v[0], v[1], 0.0)
+
+
+@wp.kernel(enable_backward=False)
+def evaluate(
+    task: TaskParameters,
+    actions: wp.array2d(dtype=float),
+    status: wp.array(dtype=int),
+    position: wp.array(dtype=wp.vec3),
+    origin: wp.array(dtype=wp.vec3),
+    route: wp.array2d(dtype=wp.vec3),
+    target_index: wp.array(dtype=int),
+    leg_start: wp.array(dtype=wp.vec3),
+    previous_distance: wp.array(dtype=float),
+    last_action: wp.array2d(dtype=float),
+    episode_length: wp.array(dtype=wp.int32),
+    episode_return: wp.array(dtype=float),
+    reward: wp.array(dtype=float),
+    terminated: wp.array(dtype=wp.bool),
+    time_out: wp.array(dtype=wp.bool),
+    done: wp.array(dtype=wp.bool),
+    reset_mask: wp.array(dtype=wp.int32),
+    target_world: wp.array(dtype=wp.vec3),
+    final_return: wp.array(dtype=float),
+    final_length: wp.array(dtype=wp.int32),
+    final_success: wp.array(dtype=float),
+    final_status: wp.array(dtype=int),
+    final_waypoints: wp.array(dtype=int),
+):
+    """Reward, waypoint progress and the end of the episode after a decision (see ``RewardConfig``)."""
+    env = wp.tid()
+    flags = status[env]
+    index = target_index[env]
+    local = position[env] - origin[env]
+    target = route[env, index]
+    distance = wp.length(planar(target - local))
+    leg = wp.length(planar(target - leg_start[env]))
+    level = float(wp.abs(propeller_level(actions[env, 0])))
+
+    r = float(0.0)
+    ended = False
+    success = False
+    if flags != 0:
+        r = -task.flagged_penalty
+        ended = True
+    else:
+        r = (previous_distance[env] - distance) / task.progress_scale
+        if r > 0.0:
+            r = r * (1.0 - task.propeller_gain * level / float(MAX_LEVEL))
+        else:
+            r = r - task.propeller_cost * level
+        if distance <= task.reach_radius:
+            r = r + task.reach_bonus
+            if index + 1 >= task.route_length:
+                ended = True
+                success = True
+                index = index + 1
+            else:
+                leg_start[env] = target
+                index = index + 1
+                target = route[env, index]
+                distance = wp.length(planar(target - local))
+        elif distance > leg + task.lost_margin:
+            r = r - task.lost_penalty
+            ended = True
+    smooth = float(0.0)
+    for k in range(3):
+        a = actions[env, k]
+        if wp.isfinite(a):
+            a = wp.clamp(a, -1.0, 1.0)
+        else:
+            a = 0.0
+        change = a - last_action[env, k]
+        smooth += change * change
+        last_action[env, k] = a
+    r = r - task.smoothness * smooth - task.time_cost
+
+    length = episode_length[env] + 1
+    total = episode_return[env] + r
+    late = (not ended) and length >= task.max_episode_length
+    reward[env] = r
+    terminated[env] = ended
+    time_out[env] = late
+    done[env] = ended or late
+    previous_distance[env] = distance
+    target_index[env] = wp.min(index, task.route_length - 1)
+    target_world[env] = origin[env] + route[env, wp.min(index, task.route_length - 1)]
+    episode_length[env] = length
+    episode_return[env] = total
+    if ended or late:
+        reset_mask[env] = 1
+        final_return[env] = total
+        final_length[env] = length
+        final_status[env] = flags
+        final_waypoints[env] = index
+        if success:
+            final_success[env] = 1.0
+        else:
+            final_success[env] = 0.0
+    else:
+        reset_mask[env] = 0
+
+
+@wp.func
+def finite_or_zero(value: float) -> float:
+    if wp.isfinite(value):
+        return value
+    return 0.0
+
+
+@wp.func
+def unit_clip(value: float) -> float:
+    return wp.clamp(finite_or_zero(value), -1.0, 1.0)
+
+
+@wp.kernel(enable_backward=False)
+def observe(
+    task: TaskParameters,
+    position: wp.array(dtype=wp.vec3),
+    orientation: wp.array(dtype=wp.quat),
+    velocity: wp.array(dtype=vec6),
+    wind_velocity: wp.array(dtype=wp.vec3),
+    truth: wp.array2d(dtype=float),
+    readings: wp.array2d(dtype=float),
+    rudder_angle: wp.array(dtype=float),
+    boom_angle: wp.array(dtype=float),
+    sheet_limit: wp.array(dtype=float),
+    target_world: wp.array(dtype=wp.vec3),
+    leg_start: wp.array(dtype=wp.vec3),
+    origin: wp.array(dtype=wp.vec3),
+    target_index: wp.array(dtype=int),
+    last_action: wp.array2d(dtype=float),
+    policy: wp.array2d(dtype=float),
+    critic: wp.array2d(dtype=float),
+):
+    """The policy's observation (the task's set) and the critic's: the policy's followed by privileged
+    truth (distance, bearing, velocities, attitude, true wind, progress along the route)."""
+    env = wp.tid()
+    rotation = orientation[env]
+    heading = heading_of(rotation)
+    target = target_world[env]
+    to_target = planar(target - position[env])
+    distance = wp.length(to_target)
+    bearing = wrap_angle(wp.atan2(to_target[1], to_target[0]) - heading)
+    leg = wp.length(planar(target - (origin[env] + leg_start[env])))
+    lost_distance = leg + task.lost_margin
+    p = 0
+    if task.observation_set == 0:
+        policy[env, 0] = unit_clip(2.0 * distance / lost_distance - 1.0)
+        policy[env, 1] = unit_clip(bearing * DEGREES / 180.0)
+        policy[env, 2] = unit_clip(velocity[env][0] / 5.0 - 1.0)
+        policy[env, 3] = unit_clip(truth[env, 14] / 15.0 - 1.0)
+        policy[env, 4] = unit_clip(truth[env, 13] * DEGREES / 180.0)
+        p = SEED_OBS
+    else:
+        seen = planar(target - wp.vec3(readings[env, 0], readings[env, 1], 0.0))
+        seen_bearing = wp.atan2(seen[1], seen[0]) - readings[env, 12]
+        awa = readings[env, 13]
+        policy[env, 0] = finite_or_zero(wp.length(seen) / lost_distance)
+        policy[env, 1] = finite_or_zero(wp.sin(seen_bearing))
+        policy[env, 2] = finite_or_zero(wp.cos(seen_bearing))
+        policy[env, 3] = finite_or_zero(readings[env, 15] / 2.0)
+        policy[env, 4] = finite_or_zero(wp.sin(awa))
+        policy[env, 5] = finite_or_zero(wp.cos(awa))
+        policy[env, 6] = finite_or_zero(readings[env, 14] / 10.0)
+        policy[env, 7] = finite_or_zero(wp.atan2(readings[env, 7], readings[env, 8]))
+        policy[env, 8] = finite_or_zero(readings[env, 11] / 0.5)
+        policy[env, 9] = finite_or_zero(rudder_angle[env] / RUDDER_LIMIT)
+        policy[env, 10] = finite_or_zero(boom_angle[env] / (2.0 * SHEET_HALF))
+        policy[env, 11] = finite_or_zero(sheet_limit[env] / (2.0 * SHEET_HALF))
+        for k in range(3):
+            policy[env, 12 + k] = last_action[env, k]
+        p = PLUS_OBS
+    for k in range(p):
+        critic[env, k] = policy[env, k]
+    nu = velocity[env]
+    up = wp.quat_rotate(rotation, wp.vec3(0.0, 0.0, 1.0))
+    wind = wind_velocity[env]
+    true_wind_angle = wp.atan2(wind[1], wind[0]) - heading
+    critic[env, p + 0] = finite_or_zero(distance / lost_distance)
+    critic[env, p + 1] = finite_or_zero(wp.sin(bearing))
+    critic[env, p + 2] = finite_or_zero(wp.cos(bearing))
+    critic[env, p + 3] = finite_or_zero(nu[0] / 2.0)
+    critic[env, p + 4] = finite_or_zero(nu[1])
+    critic[env, p + 5] = finite_or_zero(nu[5] / 0.5)
+    critic[env, p + 6] = finite_or_zero(up[0])
+    critic[env, p + 7] = finite_or_zero(up[1])
+    critic[env, p + 8] = finite_or_zero(wp.length(wind) / 10.0)
+    critic[env, p + 9] = finite_or_zero(wp.sin(true_wind_angle))
+    critic[env, p + 10] = finite_or_zero(wp.cos(true_wind_angle))
+    critic[env, p + 11] = float(target_index[env]) / float(task.route_length)
+
+
+@wp.kernel(enable_backward=False)
+def draw_starts(
+    task: TaskParameters,
+    start: StartDistribution,
+    seed: wp.array(dtype=int),
+    reset_mask: wp.array(dtype=wp.int32),
+    origin: wp.array(dtype=wp.vec3),
+    episode_count: wp.array(dtype=int),
+    route: wp.array2d(dtype=wp.vec3),
+    target_index: wp.array(dtype=int),
+    leg_start: wp.array(dtype=wp.vec3),
+    previous_distance: wp.array(dtype=float),
+    last_action: wp.array2d(dtype=float),
+    episode_length: wp.array(dtype=wp.int32),
+    episode_return: wp.array(dtype=float),
+    target_world: wp.array(dtype=wp.vec3),
+    start_position: wp.array(dtype=wp.vec3),
+    start_orientation: wp.array(dtype=wp.quat),
+    start_velocity: wp.array(dtype=vec6),
+    start_sheet: wp.array(dtype=float),
+    start_wind_speed: wp.array(dtype=float),
+    start_wind_direction: wp.array(dtype=float),
+    start_gust_scale: wp.array(dtype=float),
+):
+    """A new episode for every environment whose ``reset_mask`` is set, from its own random stream
+    (seed, environment, episode number): the simulator's start rows and the task's bookkeeping."""
+    env = wp.tid()
+    if reset_mask[env] == 0:
+        return
+    episode = episode_count[env] + 1
+    episode_count[env] = episode
+    state = stream_state(seed[0], EPISODE_START, episode, env)
+
+    jitter = start.position_jitter * wp.vec3(2.0 * wp.randf(state) - 1.0, 2.0 * wp.randf(state) - 1.0, 0.0)
+    local = start.start_point + jitter
+    if start.random_waypoint != 0:
+        distance = draw(state, start.waypoint_distance_low, start.waypoint_distance_high, 0.0)
+        bearing = draw(state, start.waypoint_bearing_low, start.waypoint_bearing_high, 0.0)
+        route[env, 0] = start.start_point + distance * wp.vec3(wp.cos(bearing), wp.sin(bearing), 0.0)
+    first = route[env, 0]
+    heading = draw(state, start.heading_low, start.heading_high, start.heading_step)
+    if start.heading_toward_waypoint != 0:
+        heading = heading + wp.atan2(first[1] - local[1], first[0] - local[0])
+    start_position[env] = origin[env] + local + wp.vec3(0.0, 0.0, start.start_height)
+    start_orientation[env] = wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), heading)
+    start_velocity[env] = vec6(draw(state, start.surge_low, start.surge_high, 0.0), 0.0, 0.0, 0.0, 0.0, 0.0)
+    start_sheet[env] = draw(state, start.sheet_low, start.sheet_high, 0.0)
+    start_wind_speed[env] = draw(state, start.wind_speed_low, start.wind_speed_high, 0.0)
+    start_wind_direction[env] = draw(state, start.wind_direction_low, start.wind_direction_high,
+                                     start.wind_direction_step)
+    start_gust_scale[env] = draw(state, start.gust_scale_low, start.gust_scale_high, 0.0)
+
+    target_index[env] = 0
+    leg_start[env] = local
+    previous_distance[env] = wp.length(planar(first - local))
+    for k in range(3):
+        last_action[env, k] = 0.0
+    episode_length[env] = 0
+    episode_return[env] = 0.0
+    target_world[env] = origin[env] + first

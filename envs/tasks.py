@@ -1,0 +1,271 @@
+"""Sailing tasks as configs: the seed paper's waypoint task, our Waypoint+ and the BCDACA mission.
+
+A task is this config plus the kernels of ``ocean_warp.envs.task_kernels``; ``SailingEnv`` runs any of
+them. Every task has the same three actions, each in [-1, 1] (the seed's):
+
+    a0  propeller level int(5 a0), truncated toward zero (-5 ... +5)
+    a1  sheet, the largest boom angle either side: (a1 + 1) 45 deg
+    a2  rudder angle: 60 deg a2, positive turns to port
+
+Geometry is relative to each environment's origin on the periodic ocean; angles in configs are in
+degrees (written by people), radians inside.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+
+from ocean_warp.eboat import EBoatSimulatorConfig
+from ocean_warp.ocean_config import OceanConfig
+from ocean_warp.sensors import SensorConfig
+from ocean_warp.validation import require_choice, require_in_range, require_non_negative, require_positive
+from ocean_warp.wind import WindConfig
+
+__all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
+           "MissionConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_sea", "waypoint_plus_sea"]
+
+MISSION_WAYPOINTS = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}
+"""The seed paper's waypoints [m]: a 100 m square turned 45 degrees."""
+BCDACA_ROUTE = tuple(MISSION_WAYPOINTS[name] for name in "BCDACA")
+"""The six legs of the mission, in order, starting from A."""
+
+
+class ObservationSet(str, enum.Enum):
+    """What the policy sees."""
+
+    SEED = "seed"
+    """The seed paper's 5 values from exact state, each scaled to [-1, 1] and clipped: 2 d / d_lost - 1;
+    bearing to the waypoint from the bow [deg] / 180; u / 5 - 1 [m/s]; apparent wind speed / 15 - 1
+    [m/s]; apparent wind angle [deg] / 180."""
+    PLUS = "plus"
+    """15 values from the noisy sensors: distance / d_lost; sin, cos of the bearing (GNSS and compass);
+    speed through the water / 2; sin, cos of the apparent wind angle and its speed / 10 (vane and
+    anemometer); heel from the accelerometer [rad]; yaw rate / 0.5 (gyro); rudder / 60 deg, boom /
+    90 deg and sheet limit / 90 deg (actuator feedback); the last action (3)."""
+
+
+def _require_range(owner: str, name: str, pair, low: float, high: float) -> tuple[float, float]:
+    if not (isinstance(pair, (tuple, list)) and len(pair) == 2):
+        raise ValueError(f"{owner}.{name} must be a (low, high) pair, got {pair!r}")
+    a = require_in_range(owner, name, pair[0], low, high)
+    b = require_in_range(owner, name, pair[1], low, high)
+    if a > b:
+        raise ValueError(f"{owner}.{name} must have low <= high, got {pair!r}")
+    return (a, b)
+
+
+@dataclasses.dataclass(frozen=True)
+class StartConfig:
+    """Where and how each episode starts, drawn per environment from its own random stream.
+
+    A ``*_step_deg`` of 0 draws continuously from the range; otherwise from the grid low, low + step, ...
+    that stays below high (a full circle counts its end once)."""
+
+    heading_deg: tuple[float, float] = (-180.0, 180.0)
+    """Range of the boat's heading [deg, yaw from +x counter-clockwise]; relative to the bearing of the
+    first waypoint when ``heading_toward_waypoint``."""
+    heading_step_deg: float = 20.0
+    """Grid of headings [deg] (the seed: 20); 0: continuous."""
+    heading_toward_waypoint: bool = False
+    """Headings are offsets from the bearing of the first waypoint (False: absolute)."""
+    wind_speed: tuple[float, float] = (0.0, 12.0)
+    """Range of the mean true wind speed [m/s] (the seed: 0-12)."""
+    wind_direction_deg: tuple[float, float] = (-180.0, 180.0)
+    """Range of the direction the wind blows towards [deg]."""
+    wind_direction_step_deg: float = 10.0
+    """Grid of wind directions [deg] (the seed: 10); 0: continuous."""
+    gust_scale: tuple[float, float] = (1.0, 1.0)
+    """Range of the factor on the wind config's gust standard deviations."""
+    waypoint_distance: tuple[float, float] = (100.0, 100.0)
+    """Range of the first waypoint's distance from the start [m] (waypoint tasks; the seed: 100)."""
+    waypoint_bearing_deg: tuple[float, float] = (0.0, 0.0)
+    """Range of its bearing from the start [deg, from +x counter-clockwise] (the seed: fixed)."""
+    position_jitter: float = 0.0
+    """Half-width of the square around the start point the boat is placed in [m]."""
+    surge_speed: tuple[float, float] = (0.0, 0.0)
+    """Range of the initial speed ahead [m/s]."""
+    sheet_deg: tuple[float, float] = (0.0, 0.0)
+    """Range of the initial sheet (boom limit) [deg]."""
+
+    def __post_init__(self):
+        owner = "StartConfig"
+        for name, low, high in (("heading_deg", -360.0, 360.0), ("wind_speed", 0.0, 40.0),
+                                ("wind_direction_deg", -360.0, 360.0), ("gust_scale", 0.0, 10.0),
+                                ("waypoint_distance", 0.0, 10_000.0), ("waypoint_bearing_deg", -360.0, 360.0),
+                                ("surge_speed", -2.0, 5.0), ("sheet_deg", 0.0, 90.0)):
+            object.__setattr__(self, name, _require_range(owner, name, getattr(self, name), low, high))
+        for name in ("heading_step_deg", "wind_direction_step_deg"):
+            object.__setattr__(self, name, require_in_range(owner, name, getattr(self, name), 0.0, 360.0))
+        object.__setattr__(self, "position_jitter", require_non_negative(owner, "position_jitter",
+                                                                         self.position_jitter, unit=" [m]"))
+        if not isinstance(self.heading_toward_waypoint, bool):
+            raise ValueError(f"{owner}.heading_toward_waypoint must be True or False, got "
+                             f"{self.heading_toward_waypoint!r}")
+
+
+@dataclasses.dataclass(frozen=True)
+class RewardConfig:
+    """Reward per decision. Progress: r = (d_prev - d) / progress_scale towards the current waypoint;
+    then the seed's propeller term: if r > 0, r *= 1 - propeller_gain |level| / 5, else r -= propeller_cost
+    |level|. Plus ``reach_bonus`` per waypoint reached, minus ``lost_penalty`` when the boat is lost,
+    minus ``flagged_penalty`` when the simulator flags it (capsized, non-finite, sunk, flying, bad
+    input), minus ``smoothness`` sum((a - a_prev)^2) and ``time_cost`` every decision."""
+
+    progress_scale: float = 125.0
+    """[m] (the seed: 125)."""
+    propeller_gain: float = 0.9
+    """The seed: 0.9."""
+    propeller_cost: float = 0.01
+    """The seed: 0.01."""
+    reach_bonus: float = 1.0
+    lost_penalty: float = 1.0
+    flagged_penalty: float = 1.0
+    smoothness: float = 0.0
+    """Weight of the squared change of the action (0 in the seed)."""
+    time_cost: float = 0.0
+    """Per decision (0 in the seed)."""
+
+    def __post_init__(self):
+        owner = "RewardConfig"
+        object.__setattr__(self, "progress_scale", require_positive(owner, "progress_scale", self.progress_scale,
+                                                                    unit=" [m]"))
+        for field in dataclasses.fields(self):
+            if field.name != "progress_scale":
+                object.__setattr__(self, field.name, require_non_negative(owner, field.name,
+                                                                          getattr(self, field.name)))
+
+
+def _seed_sea() -> OceanConfig:
+    """Gentle waves, as the seed's (three small Pierson-Moskowitz components): Hs 0.3 m, Tp 3 s."""
+    return OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=0.3, peak_period=3.0)
+
+
+def waypoint_plus_sea() -> OceanConfig:
+    """A livelier sea than the seed's, choppy: Hs 0.5 m, Tp 3.5 s, choppiness 0.5."""
+    return OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=0.5, peak_period=3.5, choppiness=0.5)
+
+
+def mission_sea() -> OceanConfig:
+    """The mission's default JONSWAP sea: Hs 0.3 m, Tp 3 s."""
+    return OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=0.3, peak_period=3.0)
+
+
+@dataclasses.dataclass(frozen=True)
+class TaskConfig:
+    """A sailing task: the simulation, the route, the start distribution, the observation and the reward."""
+
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
+        ocean=_seed_sea(), sensors=SensorConfig.noise_free()))
+    """Boat, sea, wind gusts, sensors, water and time step (dt, substeps)."""
+    decision_period: float = 1.0
+    """Simulated time per decision [s] (the seed: 1-5 s); a whole number of ``simulator.dt``."""
+    episode_time: float = 600.0
+    """Time limit [s]; an episode that reaches it is reported as a time-out, not a termination."""
+    route: tuple[tuple[float, float], ...] | None = None
+    """Fixed waypoints (x, y) [m] from the origin, sailed in order; None: one waypoint drawn per episode
+    (``start.waypoint_distance``, ``start.waypoint_bearing_deg``)."""
+    start_point: tuple[float, float] = (0.0, 0.0)
+    """Where episodes start, from the origin [m]."""
+    reach_radius: float = 5.0
+    """A waypoint counts as reached within this distance [m]."""
+    lost_margin: float = 25.0
+    """The boat is lost when farther from its waypoint than the leg's length plus this [m] (the seed:
+    100 + 25 = 125 m)."""
+    observation: ObservationSet | str = ObservationSet.SEED
+    start: StartConfig = dataclasses.field(default_factory=StartConfig)
+    reward: RewardConfig = dataclasses.field(default_factory=RewardConfig)
+    ocean_spacing: bool = True
+    """Give each environment its own origin, spread over the periodic ocean tile, so that neighbours
+    meet different waves (False: every origin at (0, 0))."""
+    start_height: float | None = None
+    """Height of the base frame at the start [m]; None: the boat's rest height in still water."""
+
+    def __post_init__(self):
+        owner = type(self).__name__
+        if not isinstance(self.simulator, EBoatSimulatorConfig):
+            raise ValueError(f"{owner}.simulator must be an EBoatSimulatorConfig, got {self.simulator!r}")
+        period = require_positive(owner, "decision_period", self.decision_period, unit=" [s]")
+        steps = period / self.simulator.dt
+        if abs(steps - round(steps)) > 1e-6 * max(1.0, steps) or round(steps) < 1:
+            raise ValueError(f"{owner}.decision_period {period} s must be a whole number (>= 1) of simulator.dt "
+                             f"{self.simulator.dt} s")
+        object.__setattr__(self, "decision_period", period)
+        episode = require_positive(owner, "episode_time", self.episode_time, unit=" [s]")
+        if episode < period:
+            raise ValueError(f"{owner}.episode_time {episode} s must be at least one decision_period ({period} s)")
+        object.__setattr__(self, "episode_time", episode)
+        if self.route is not None:
+            route = tuple(tuple(float(v) for v in point) for point in self.route)
+            if not route or any(len(point) != 2 or not all(math.isfinite(v) for v in point) for point in route):
+                raise ValueError(f"{owner}.route must be a non-empty sequence of finite (x, y) pairs [m], got "
+                                 f"{self.route!r}")
+            object.__setattr__(self, "route", route)
+        object.__setattr__(self, "reach_radius", require_positive(owner, "reach_radius", self.reach_radius,
+                                                                  unit=" [m]"))
+        object.__setattr__(self, "lost_margin", require_non_negative(owner, "lost_margin", self.lost_margin,
+                                                                     unit=" [m]"))
+        object.__setattr__(self, "observation", require_choice(owner, "observation", self.observation,
+                                                               ObservationSet))
+        for name, kind in (("start", StartConfig), ("reward", RewardConfig)):
+            if not isinstance(getattr(self, name), kind):
+                raise ValueError(f"{owner}.{name} must be a {kind.__name__}, got {getattr(self, name)!r}")
+        if self.start_height is not None:
+            object.__setattr__(self, "start_height", require_in_range(owner, "start_height", self.start_height,
+                                                                      -1.0, 1.0, unit=" [m]"))
+
+    @property
+    def steps_per_decision(self) -> int:
+        return int(round(self.decision_period / self.simulator.dt))
+
+    @property
+    def max_episode_length(self) -> int:
+        """Decisions before a time-out."""
+        return max(1, int(round(self.episode_time / self.decision_period)))
+
+    @property
+    def route_length(self) -> int:
+        return 1 if self.route is None else len(self.route)
+
+
+@dataclasses.dataclass(frozen=True)
+class WaypointConfig(TaskConfig):
+    """The seed paper's task: the boat at the origin, a waypoint 100 m away (toward +x), heading on a
+    20 deg grid, wind 0-12 m/s from a 10 deg grid, gentle waves, exact observations (5), the seed's
+    reward; reached within 5 m, lost beyond 125 m. The seed gave no time limit; ours is 600 s."""
+
+
+@dataclasses.dataclass(frozen=True)
+class WaypointPlusConfig(TaskConfig):
+    """Ours: noisy-sensor observations with sin/cos angles, heel, yaw rate, actuator feedback and the last
+    action; continuous randomisation of start, wind (2-12 m/s), gusts (0-1.5 x 1 m/s and 0.1 rad) and
+    the waypoint (50-150 m, any bearing); a choppy sea; a 300 s time limit; a penalty on jerky actuation."""
+
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
+        ocean=waypoint_plus_sea(), wind=WindConfig(gust_speed_std=1.0, gust_direction_std=0.1)))
+    episode_time: float = 300.0
+    observation: ObservationSet | str = ObservationSet.PLUS
+    start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
+        heading_deg=(-180.0, 180.0), heading_step_deg=0.0, wind_speed=(2.0, 12.0), wind_direction_step_deg=0.0,
+        gust_scale=(0.0, 1.5), waypoint_distance=(50.0, 150.0), waypoint_bearing_deg=(-180.0, 180.0),
+        position_jitter=2.0, surge_speed=(0.0, 1.0), sheet_deg=(0.0, 60.0)))
+    reward: RewardConfig = dataclasses.field(default_factory=lambda: RewardConfig(smoothness=0.05))
+
+
+@dataclasses.dataclass(frozen=True)
+class MissionConfig(TaskConfig):
+    """The seed paper's six-waypoint mission "BCDACA": from A (0, 0) to B, C, D, A, C, A, each reached within
+    5 m; true wind 10 m/s blowing toward +x with gusts, so A->C runs dead downwind and C->A beats dead
+    upwind; a JONSWAP sea. Observations and reward as the waypoint task's, toward the current waypoint;
+    lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s."""
+
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
+        ocean=mission_sea(), wind=WindConfig(speed=10.0, direction=0.0, gust_speed_std=1.0, gust_direction_std=0.1),
+        sensors=SensorConfig.noise_free()))
+    episode_time: float = 1800.0
+    route: tuple[tuple[float, float], ...] | None = BCDACA_ROUTE
+    start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
+        heading_deg=(-10.0, 10.0), heading_step_deg=0.0, heading_toward_waypoint=True, wind_speed=(10.0, 10.0),
+        wind_direction_deg=(0.0, 0.0), wind_direction_step_deg=0.0, position_jitter=1.0))
+
