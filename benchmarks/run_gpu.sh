@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # GPU session: the CUDA half of the test suite, then the benchmarks, logs and JSON into $OUT (or ./out/gpu).
 # Usage on a CUDA machine with the project installed:  bash benchmarks/run_gpu.sh [stage ...]
-# Stages: tests, ocean, sweep, passes, ocean_cpu, hull, hull_flat, hull_blocks, eboat, breakdown, polar (default: all).
+# Stages: tests, ocean, sweep, passes, ocean_cpu, hull, hull_flat, hull_blocks, eboat, breakdown, polar, envs, mission (default: all).
 set -uo pipefail
 out=${OUT:-out/gpu}
 mkdir -p "$out"
-stages=${*:-tests ocean sweep passes ocean_cpu hull hull_flat hull_blocks eboat breakdown polar}
+stages=${*:-tests ocean sweep passes ocean_cpu hull hull_flat hull_blocks eboat breakdown polar envs mission}
 export PYTHONUNBUFFERED=1
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/gpu.txt"
 for stage in $stages; do
@@ -24,6 +24,9 @@ for stage in $stages; do
     breakdown) timeout 300 python benchmarks/eboat_breakdown.py --device cuda:0 --choppiness 0 2>&1 | tee "$out/breakdown.txt"
                timeout 300 python benchmarks/eboat_breakdown.py --device cuda:0 --choppiness 0.5 2>&1 | tee -a "$out/breakdown.txt" ;;
     polar) timeout 300 python -m ocean_warp.examples.polar --device cuda:0 --angle-step 10 --sheet-step 10 --out "$out/polar" 2>&1 | tee "$out/polar.txt" ;;
+    envs) timeout 420 python benchmarks/bench_envs.py --device cuda:0 --envs 1024 4096 16384 65536 --json "$out/envs.json" 2>&1 | tee "$out/envs.txt"
+          timeout 240 python benchmarks/bench_envs.py --device cuda:0 --envs 4096 16384 --dt 0.1 --interfaces core rsl_rl --json "$out/envs_dt01.json" 2>&1 | tee "$out/envs_dt01.txt" ;;
+    mission) timeout 400 python benchmarks/autopilot_mission.py --device cuda:0 --runs 20 2>&1 | tee "$out/mission.txt" ;;
     *) echo "unknown stage $stage" ;;
   esac
   echo "stage $stage took $(( $(date +%s) - start )) s"
