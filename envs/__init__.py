@@ -26,9 +26,10 @@ from .tasks import (
 __all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
            "MissionConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
 
-try:  # the interfaces and the autopilot, as their modules land
-    from .registration import register_envs
+from .gym_env import SailingEnvSingle, SailingVectorEnv
+from .registration import TASK_IDS, make_task_config, register_envs
+from .rsl_rl_env import RslRlVecEnv
 
-    register_envs()
-except ImportError:  # pragma: no cover
-    pass
+__all__ += ["RslRlVecEnv", "SailingVectorEnv", "SailingEnvSingle", "TASK_IDS", "make_task_config", "register_envs"]
+
+register_envs()

@@ -191,13 +191,22 @@ class SailingEnv:
                 wp.capture_launch(self._graph)
 
     def _launch_decision(self) -> None:
-        sim, device, n = self.simulator, self.device, self.num_envs
-        wp.launch(apply_actions, dim=n, device=device, inputs=[self.actions],
-                  outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
+        self.launch_actions()
         for _ in range(self.steps_per_decision):
-            sim.launch_step()
-        state = sim.state
-        wp.launch(evaluate, dim=n, device=device,
+            self.simulator.launch_step()
+        self.launch_task()
+
+    def launch_actions(self) -> None:
+        """The environment layer before the physics: actions to actuator commands (launch only)."""
+        sim = self.simulator
+        wp.launch(apply_actions, dim=self.num_envs, device=self.device, inputs=[self.actions],
+                  outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
+
+    def launch_task(self) -> None:
+        """The environment layer after the physics: rewards and episode ends, the final observations, new
+        episodes for the environments that ended, and the observations of the next decision (launch only)."""
+        state = self.simulator.state
+        wp.launch(evaluate, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.actions, state.status, state.position, self.origin, self.route],
                   outputs=[self.target_index, self.leg_start, self.previous_distance, self.last_action,
                            self.episode_length, self.episode_return, self.reward, self.terminated, self.time_out,

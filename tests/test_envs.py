@@ -95,7 +95,7 @@ def test_seed_reward_and_observations_match_hand_computation(device, rng):
     origin = env.buffers.origin.cpu().numpy()
     # Boat 0 next to the waypoint (reached), 1 beyond 125 m (lost), 2 and 3 somewhere in between.
     local = np.array([[97.0, 2.0, 0.0], [-30.0, 10.0, 0.0], rng.uniform(10, 60, 3) * [1, 1, 0],
-                      rng.uniform(-40, 40, 3) * [1, 1, 0]])
+                      np.array([rng.uniform(0, 60), rng.uniform(-40, 40), 0.0])])  # closer than 125 m
     env.simulator.reset(position=origin + local, heading=rng.uniform(-math.pi, math.pi, 4))
     levels = np.array([0, 3, 2, -4])
     actions = np.column_stack([levels / 5.0 + 0.1 * np.sign(levels), rng.uniform(-1, 1, 4), np.zeros(4)])
