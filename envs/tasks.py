@@ -257,7 +257,8 @@ class WaypointPlusConfig(TaskConfig):
 class MissionConfig(TaskConfig):
     """The seed paper's six-waypoint mission "BCDACA": from A (0, 0) to B, C, D, A, C, A, each reached within
     5 m; true wind 10 m/s blowing toward +x with gusts, so A->C runs dead downwind and C->A beats dead
-    upwind; a JONSWAP sea. Observations and reward as the waypoint task's, toward the current waypoint;
+    upwind; a JONSWAP sea; the boat starts with its sheet eased to 60 deg (sheeted hard in on the
+    broad reach to B, the E-Boat capsizes in 10 m/s before the sheet can ease). Observations and reward as the waypoint task's, toward the current waypoint;
     lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
@@ -267,5 +268,5 @@ class MissionConfig(TaskConfig):
     route: tuple[tuple[float, float], ...] | None = BCDACA_ROUTE
     start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
         heading_deg=(-10.0, 10.0), heading_step_deg=0.0, heading_toward_waypoint=True, wind_speed=(10.0, 10.0),
-        wind_direction_deg=(0.0, 0.0), wind_direction_step_deg=0.0, position_jitter=1.0))
+        wind_direction_deg=(0.0, 0.0), wind_direction_step_deg=0.0, position_jitter=1.0, sheet_deg=(60.0, 60.0)))
 

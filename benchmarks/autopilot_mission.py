@@ -1,0 +1,106 @@
+"""The six-waypoint mission "BCDACA" sailed by the classical autopilot: many seeded runs in one batch.
+
+    python benchmarks/autopilot_mission.py                       # 20 runs on the CPU; exits 1 below 19/20
+    python benchmarks/autopilot_mission.py --runs 20 --device cuda:0 --seed 0 --sea-state 0.3
+
+Each run is one environment of ``SailingEnv(MissionConfig())``: A (0, 0) -> B, C, D, A, C, A, each
+reached within 5 m; true wind 10 m/s toward +x with gusts (1 m/s, 0.1 rad); a JONSWAP sea (Hs
+``--sea-state``, Tp 3 s); each run has its own origin on the periodic tile (its own waves) and its own
+random streams. The autopilot (``ocean_warp.envs.autopilot``) takes the place of the policy: it writes
+the actions of every decision (1 s) from the environment's current waypoints. A run's first episode
+is its result: success, time, waypoints, tacks, and how it ended (capsize, lost, time-out).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import logging
+import os
+import sys
+import time
+
+import numpy as np
+import torch
+import warp as wp
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+from ocean_warp.envs import MissionConfig, SailingEnv  # noqa: E402
+from ocean_warp.envs.autopilot import AutopilotConfig, SailingAutopilot  # noqa: E402
+from ocean_warp.fleet import BoatStatus  # noqa: E402
+
+
+def run_mission(runs: int = 20, *, device="cpu", seed: int = 0, sea_state: float = 0.3,
+                time_limit: float | None = None, autopilot: AutopilotConfig | None = None) -> dict[str, np.ndarray]:
+    """Sail ``runs`` missions at once; per run: success, time [s], waypoints, tacks, status bits at the end."""
+    task = MissionConfig()
+    ocean = dataclasses.replace(task.simulator.ocean, significant_wave_height=sea_state, seed=seed)
+    task = dataclasses.replace(task, simulator=dataclasses.replace(task.simulator, ocean=ocean),
+                               episode_time=time_limit or task.episode_time)
+    env = SailingEnv(task, runs, device=device, seed=seed)
+    pilot = SailingAutopilot(env.simulator, autopilot)
+    pilot.reset()
+    b = env.buffers
+    finished = np.zeros(runs, dtype=bool)
+    result = {name: np.zeros(runs) for name in ("success", "time", "waypoints", "tacks", "status", "time_out")}
+    for decision in range(env.max_episode_length):
+        pilot.act(env.target_world, env.actions)
+        tacks = pilot.tacks.numpy().copy()  # before a reset clears them
+        env.step()
+        done = b.done.cpu().numpy() & ~finished
+        if done.any():
+            for name, values in (("success", b.final_success), ("waypoints", b.final_waypoints),
+                                 ("status", b.final_status), ("time_out", b.time_out)):
+                result[name][done] = values.cpu().numpy()[done]
+            result["time"][done] = b.final_length.cpu().numpy()[done] * task.decision_period
+            result["tacks"][done] = tacks[done]
+            finished |= done
+        pilot.reset(env.reset_mask)
+        if finished.all():
+            break
+    return result
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--runs", type=int, default=20)
+    parser.add_argument("--device", default="cpu")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the sea, the gusts and the starts")
+    parser.add_argument("--sea-state", type=float, default=0.3, help="significant wave height Hs [m]")
+    parser.add_argument("--time-limit", type=float, default=None, help="sim time per run [s] (default: the task's)")
+    parser.add_argument("--required", type=int, default=None, help="completions needed (default 95 %% of runs)")
+    parser.add_argument("--autopilot", nargs="*", default=[], metavar="FIELD=VALUE",
+                        help="AutopilotConfig fields, e.g. assist_level=0")
+    args = parser.parse_args(argv)
+    wp.config.log_level = logging.WARNING
+    overrides = {}
+    for item in args.autopilot:
+        name, value = item.split("=", 1)
+        overrides[name] = int(value) if value.lstrip("-").isdigit() else float(value)
+    config = AutopilotConfig(**overrides)
+    start = time.perf_counter()
+    with torch.no_grad():
+        result = run_mission(args.runs, device=args.device, seed=args.seed, sea_state=args.sea_state,
+                             time_limit=args.time_limit, autopilot=config)
+    wall = time.perf_counter() - start
+    success = result["success"] > 0.5
+    print(f"BCDACA with the autopilot ({', '.join(args.autopilot) or 'defaults'}): {args.runs} runs, seed {args.seed}, "
+          f"Hs {args.sea_state} m, device {args.device}, {wall:.0f} s wall")
+    print("| run | completed | time [s] | waypoints | tacks | end |")
+    for i in range(args.runs):
+        status = int(result["status"][i])
+        end = ("capsized" if status & BoatStatus.CAPSIZED else f"flag {status}" if status else
+               "time-out" if result["time_out"][i] else "done" if success[i] else "lost")
+        print(f"| {i} | {'yes' if success[i] else 'no'} | {result['time'][i]:.0f} | {int(result['waypoints'][i])} | "
+              f"{int(result['tacks'][i])} | {end} |")
+    times = result["time"][success]
+    print(f"completed {success.sum()} / {args.runs}; mission time mean {times.mean() if times.size else float('nan'):.0f} s, "
+          f"spread {times.min() if times.size else 0:.0f}-{times.max() if times.size else 0:.0f} s; "
+          f"tacks mean {result['tacks'][success].mean() if times.size else float('nan'):.1f}")
+    required = args.required if args.required is not None else int(np.ceil(0.95 * args.runs))
+    return 0 if success.sum() >= required else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
