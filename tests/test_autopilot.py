@@ -98,7 +98,7 @@ def test_sheet_from_apparent_wind(device):
 
 def test_course_choices(device):
     """Line of sight on a reach; close-hauled on the boat's side for a target dead upwind (never inside
-    the no-go zone); a dead run by default, broad reaches when run_angle < 180 deg."""
+    the no-go zone); broad reaches 150 deg off the wind by default, a dead run with run_angle 180 deg."""
     config = AutopilotConfig()
     ch = config.close_hauled_angle
     # Boat 0: target on a beam reach (north); 1 and 2: dead upwind (west) on either tack;
@@ -107,12 +107,15 @@ def test_course_choices(device):
     targets = [[0, 100, 0], [-100, 0, 0], [-100, 0, 0], [100, 0, 0]]
     pilot = SailingAutopilot(FakeBoats(device, headings, surge=1.0))
     _, course = decide(pilot, targets, device)
-    np.testing.assert_allclose(wrap(course - np.array([math.pi / 2, WIND_FROM + ch, WIND_FROM - ch, 0.0])), 0.0,
-                               atol=1e-5)
+    np.testing.assert_allclose(wrap(course - np.array([math.pi / 2, WIND_FROM + ch, WIND_FROM - ch, 30.0 * DEG])),
+                               0.0, atol=1e-5)
     np.testing.assert_array_equal(pilot.side.numpy()[1:3], [1, -1])
-    gybing = SailingAutopilot(FakeBoats(device, [0.3, -0.3], surge=1.0), AutopilotConfig(run_angle=150.0 * DEG))
+    gybing = SailingAutopilot(FakeBoats(device, [0.3, -0.3], surge=1.0), AutopilotConfig(run_angle=140.0 * DEG))
     _, course = decide(gybing, [[100, 0, 0]] * 2, device)
-    np.testing.assert_allclose(wrap(course - np.array([30.0 * DEG, -30.0 * DEG])), 0.0, atol=1e-5)
+    np.testing.assert_allclose(wrap(course - np.array([40.0 * DEG, -40.0 * DEG])), 0.0, atol=1e-5)
+    running = SailingAutopilot(FakeBoats(device, [0.3], surge=1.0), AutopilotConfig(run_angle=math.pi))
+    _, course = decide(running, [[100, 0, 0]], device)
+    np.testing.assert_allclose(wrap(course), 0.0, atol=1e-5)
 
 
 def test_tack_hysteresis(device):
