@@ -236,13 +236,15 @@ class SailingEnv:
 
     # --- host calls --------------------------------------------------------------------------------
     def reset(self, seed: int | None = None) -> None:
-        """Start a new episode in every environment; with ``seed``, restart every environment's random
-        stream from it (one seed, one sequence of episodes)."""
+        """Start a new episode in every environment; with ``seed``, restart the whole batch from it: every
+        environment's random stream, the simulated time (the waves) and the gusts' and sensors' noise
+        (one seed, one sequence of episodes)."""
         with ordered_with_torch(self.device):
             if seed is not None:
                 self.seed = require_int_in_range("SailingEnv.reset", "seed", seed, 0, 2**31 - 1)
                 self._seed.fill_(self.seed)
                 self.episode_count.zero_()
+                self.simulator.rewind()
             self.terminated.zero_()
             self.time_out.zero_()
             self.done.zero_()

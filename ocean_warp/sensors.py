@@ -125,6 +125,10 @@ class Sensors:
         self._read(self._every_boat, False, SENSOR_NOISE, simulator.fleet)
         wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
+    def restart_stream(self) -> None:
+        """Number the noise's random draws from zero again (with the same seed: the same noise)."""
+        self._counter.zero_()
+
     def reset(self, boats: np.ndarray, fleet) -> None:
         """Host path of :meth:`reset_masked` for the boats at the indices ``boats``."""
         with ordered_with_torch(self.device):

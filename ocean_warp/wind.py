@@ -110,6 +110,10 @@ class Wind:
                   outputs=[self.speed, self.direction, self.velocity])
         wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
+    def restart_stream(self) -> None:
+        """Number the gusts' random draws from zero again (with the same seed: the same gusts)."""
+        self._counter.zero_()
+
     def set(self, envs=None, *, speed, direction, gust_scale=1.0) -> None:
         """Set the mean wind of the chosen environments (None: all) and restart their gusts from it:
         ``speed`` [m/s], ``direction`` [rad] and ``gust_scale`` (on the config's gust deviations) per

@@ -231,3 +231,18 @@ def test_captured_and_eager_decisions_agree(device, rng):
             trace.append(torch.cat([env.buffers.policy_obs, env.buffers.reward[:, None]], dim=1).cpu().numpy())
         results.append(np.array(trace))
     np.testing.assert_allclose(results[0], results[1], atol=1e-5)
+
+
+def test_a_seeded_reset_restarts_waves_gusts_and_noise():
+    """With the default sea, gusts and noisy sensors: reset(seed) twice, the same actions, the same
+    observations (the waves' clock and the noise streams restart too)."""
+    env = SailingEnv(WaypointPlusConfig(), 2, device="cpu")
+    traces = []
+    for _ in range(2):
+        env.reset(seed=11)
+        trace = [env.buffers.policy_obs.clone()]
+        for k in range(3):
+            env.step(torch.full((2, 3), 0.2 * k - 0.1))
+            trace.append(env.buffers.policy_obs.clone())
+        traces.append(torch.stack(trace))
+    assert torch.equal(traces[0], traces[1])

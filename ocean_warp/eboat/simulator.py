@@ -203,6 +203,13 @@ class EBoatSimulator:
         self.rig.reset_masked(mask, start.sheet)
         self.sensors.reset_masked(mask, self.fleet)
 
+    def rewind(self) -> None:
+        """Set the simulated time (and so the waves) and the wind's and sensors' random streams back to
+        their start, for a seeded restart of the whole batch; launches only."""
+        self.ocean.time.zero_()
+        self.wind.restart_stream()
+        self.sensors.restart_stream()
+
     def step(self) -> None:
         """Advance ``config.dt``: ocean, hull, wind, rig and integration every substep, sensors once (a
         CUDA graph after the first call; ordered with torch's work on the device)."""
