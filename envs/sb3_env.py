@@ -61,8 +61,6 @@ class Sb3VecEnv(VecEnv):
         super().__init__(self.env.num_envs, observation_space(self.env.num_policy_obs), action_space())
         self._device = torch.device(self.env.torch_device)
         self._actions: torch.Tensor | None = None
-        self._episode_return = np.zeros(self.num_envs, dtype=np.float64)
-        self._episode_length = np.zeros(self.num_envs, dtype=np.int64)
         self._start_time = time.time()
 
     def reset(self) -> VecEnvObs:
@@ -75,8 +73,6 @@ class Sb3VecEnv(VecEnv):
         self.env.reset(seed=seed)
         self._reset_seeds()
         self._reset_options()
-        self._episode_return[:] = 0.0
-        self._episode_length[:] = 0
         return to_numpy(self.env.buffers.policy_obs)
 
     def step_async(self, actions: np.ndarray) -> None:
@@ -99,21 +95,17 @@ class Sb3VecEnv(VecEnv):
         terminated = to_numpy(buffers.terminated)
         truncated = to_numpy(buffers.time_out)
         dones = terminated | truncated
-        self._episode_return += rewards
-        self._episode_length += 1
         infos: list[dict[str, Any]] = [{} for _ in range(self.num_envs)]
         if dones.any():
             final = to_numpy(buffers.final_policy_obs)
+            returns, lengths = to_numpy(buffers.final_return), to_numpy(buffers.final_length)
             elapsed = round(time.time() - self._start_time, 6)
             for index in np.flatnonzero(dones):
                 infos[index] = {
                     "terminal_observation": final[index],
                     "TimeLimit.truncated": bool(truncated[index] and not terminated[index]),
-                    "episode": {"r": float(self._episode_return[index]),
-                                "l": int(self._episode_length[index]), "t": elapsed},
+                    "episode": {"r": float(returns[index]), "l": int(lengths[index]), "t": elapsed},
                 }
-            self._episode_return[dones] = 0.0
-            self._episode_length[dones] = 0
         return observations, rewards, dones, infos
 
     def close(self) -> None:
