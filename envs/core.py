@@ -231,7 +231,7 @@ class SailingEnv:
                   outputs=[self.episode_count, self.route, self.target_index, self.leg_start, self.previous_distance,
                            self.last_action, self.episode_length, self.episode_return, self.target_world,
                            start.position, start.orientation, start.velocity, start.sheet, start.wind_speed,
-                           start.wind_direction, start.gust_scale])
+                           start.wind_direction, start.gust_scale, start.foil_scale, start.noise_scale])
         self.simulator.reset_masked(mask)
 
     # --- host calls --------------------------------------------------------------------------------
@@ -319,4 +319,6 @@ def _start_distribution(task: TaskConfig, start_height: float) -> StartDistribut
     d.start_height = start_height
     d.surge_low, d.surge_high = s.surge_speed
     d.sheet_low, d.sheet_high = rad(s.sheet_deg[0]), rad(s.sheet_deg[1])
+    d.foil_variation = s.foil_variation
+    d.noise_scale_low, d.noise_scale_high = s.sensor_noise_scale
     return d

@@ -17,6 +17,8 @@ __all__ = ["TaskParameters", "StartDistribution", "POLICY_OBS", "PRIVILEGED_OBS"
 
 EPISODE_START = wp.constant(0x3C6E_F372)
 """Tag of the random stream that draws each episode's start."""
+RANDOMISATION = wp.constant(0x510E_527F)
+"""Tag of the random stream that draws each episode's domain randomisation (foil and sensor-noise factors)."""
 SEED_OBS = wp.constant(5)
 PLUS_OBS = wp.constant(15)
 PRIVILEGED_OBS = 12
@@ -78,6 +80,10 @@ class StartDistribution:
     surge_high: float
     sheet_low: float
     sheet_high: float
+    foil_variation: float
+    """Half-width v of the foil factors' range [1 - v, 1 + v]."""
+    noise_scale_low: float
+    noise_scale_high: float
 
 
 @wp.func
@@ -87,16 +93,20 @@ def propeller_level(action: float) -> int:
 
 
 @wp.func
-def draw(state: wp.uint32, low: float, high: float, step: float) -> float:
-    """Uniform on [low, high], or on the grid low + k step below high (inclusive of high when the grid
-    does not close a circle) when ``step`` > 0."""
+def from_uniform(u: float, low: float, high: float, step: float) -> float:
+    """A uniform number ``u`` in [0, 1) mapped onto [low, high], or onto the grid low + k step below high
+    (inclusive of high when the grid does not close a circle) when ``step`` > 0.
+
+    The caller draws ``u = wp.randf(state)`` in the kernel itself: a ``wp.func`` receives a copy of a
+    random state, so drawing in here would not advance the caller's stream and every draw would
+    repeat the same number."""
     if step <= 0.0:
-        return low + (high - low) * wp.randf(state)
+        return low + (high - low) * u
     cells = int(wp.floor((high - low) / step + 1.0e-4))
     if wp.abs(high - low - 2.0 * PI) > 1.0e-4:
         cells = cells + 1
     cells = wp.max(cells, 1)
-    return low + step * float(wp.randi(state, 0, cells))
+    return low + step * float(wp.min(int(u * float(cells)), cells - 1))
 
 
 @wp.kernel(enable_backward=False)
@@ -339,9 +349,13 @@ def draw_starts(
     start_wind_speed: wp.array(dtype=float),
     start_wind_direction: wp.array(dtype=float),
     start_gust_scale: wp.array(dtype=float),
+    start_foil_scale: wp.array(dtype=wp.vec3),
+    start_noise_scale: wp.array(dtype=float),
 ):
     """A new episode for every environment whose ``reset_mask`` is set, from its own random stream
-    (seed, environment, episode number): the simulator's start rows and the task's bookkeeping."""
+    (seed, environment, episode number): the simulator's start rows and the task's bookkeeping. The
+    domain randomisation (foil and sensor-noise factors) draws last, from a stream of its own, so the
+    rest of an episode's start does not depend on it."""
     env = wp.tid()
     if reset_mask[env] == 0:
         return
@@ -352,21 +366,31 @@ def draw_starts(
     jitter = start.position_jitter * wp.vec3(2.0 * wp.randf(state) - 1.0, 2.0 * wp.randf(state) - 1.0, 0.0)
     local = start.start_point + jitter
     if start.random_waypoint != 0:
-        distance = draw(state, start.waypoint_distance_low, start.waypoint_distance_high, 0.0)
-        bearing = draw(state, start.waypoint_bearing_low, start.waypoint_bearing_high, 0.0)
+        distance = from_uniform(wp.randf(state), start.waypoint_distance_low, start.waypoint_distance_high, 0.0)
+        bearing = from_uniform(wp.randf(state), start.waypoint_bearing_low, start.waypoint_bearing_high, 0.0)
         route[env, 0] = start.start_point + distance * wp.vec3(wp.cos(bearing), wp.sin(bearing), 0.0)
     first = route[env, 0]
-    heading = draw(state, start.heading_low, start.heading_high, start.heading_step)
+    heading = from_uniform(wp.randf(state), start.heading_low, start.heading_high, start.heading_step)
     if start.heading_toward_waypoint != 0:
         heading = heading + wp.atan2(first[1] - local[1], first[0] - local[0])
     start_position[env] = origin[env] + local + wp.vec3(0.0, 0.0, start.start_height)
     start_orientation[env] = wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), heading)
-    start_velocity[env] = vec6(draw(state, start.surge_low, start.surge_high, 0.0), 0.0, 0.0, 0.0, 0.0, 0.0)
-    start_sheet[env] = draw(state, start.sheet_low, start.sheet_high, 0.0)
-    start_wind_speed[env] = draw(state, start.wind_speed_low, start.wind_speed_high, 0.0)
-    start_wind_direction[env] = draw(state, start.wind_direction_low, start.wind_direction_high,
+    surge = from_uniform(wp.randf(state), start.surge_low, start.surge_high, 0.0)
+    start_velocity[env] = vec6(surge, 0.0, 0.0, 0.0, 0.0, 0.0)
+    start_sheet[env] = from_uniform(wp.randf(state), start.sheet_low, start.sheet_high, 0.0)
+    start_wind_speed[env] = from_uniform(wp.randf(state), start.wind_speed_low, start.wind_speed_high, 0.0)
+    start_wind_direction[env] = from_uniform(wp.randf(state), start.wind_direction_low, start.wind_direction_high,
                                      start.wind_direction_step)
-    start_gust_scale[env] = draw(state, start.gust_scale_low, start.gust_scale_high, 0.0)
+    start_gust_scale[env] = from_uniform(wp.randf(state), start.gust_scale_low, start.gust_scale_high, 0.0)
+    # Domain randomisation, from a stream of its own: the draws above stay what they were without it.
+    # wp.randf advances ``dr`` here (a wp.func would get a copy of the state; see ``from_uniform``).
+    dr = stream_state(seed[0], RANDOMISATION, episode, env)
+    v = start.foil_variation
+    sail = (1.0 - v) + (2.0 * v) * wp.randf(dr)
+    keel = (1.0 - v) + (2.0 * v) * wp.randf(dr)
+    rudder = (1.0 - v) + (2.0 * v) * wp.randf(dr)
+    start_foil_scale[env] = wp.vec3(sail, keel, rudder)
+    start_noise_scale[env] = start.noise_scale_low + (start.noise_scale_high - start.noise_scale_low) * wp.randf(dr)
 
     target_index[env] = 0
     leg_start[env] = local

@@ -6,8 +6,9 @@ positive with its trailing edge to port, which turns a boat going ahead to port 
 boom swings free within +-(sheet limit), driven by the sail's moment about the mast against the
 joint's damping, and stops dead at the limit; the sail's flow includes the boom's own swing, which
 damps it aerodynamically. The rudder and the sheet limit move towards their commands at fixed rates
-within their ranges. A NaN or infinite command, or wind, flags the boat (BAD_INPUT and NONFINITE)
-instead of being clamped into a real value.
+within their ranges. Each boat's ``foil_scale`` multiplies the lift and drag coefficients of its sail,
+keel and rudder (domain randomisation; the force is linear in them). A NaN or infinite command, or
+wind, flags the boat (BAD_INPUT and NONFINITE) instead of being clamped into a real value.
 """
 
 from __future__ import annotations
@@ -100,6 +101,7 @@ def sailing_rig(
     velocity: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
     wind_velocity: wp.array(dtype=wp.vec3),
+    foil_scale: wp.array(dtype=wp.vec3),
     rudder_command: wp.array(dtype=float),
     sheet_command: wp.array(dtype=float),
     propeller_command: wp.array(dtype=int),
@@ -111,7 +113,8 @@ def sailing_rig(
     status: wp.array(dtype=int),
 ):
     """One substep of ``dt`` [s]: actuators and boom move, and the sail, keel, rudder and propeller
-    wrenches are added to ``model_wrench``. Commands: rudder and sheet angles [rad], propeller level."""
+    wrenches are added to ``model_wrench``. Commands: rudder and sheet angles [rad], propeller level.
+    ``foil_scale``: factors on the (sail, keel, rudder) lift and drag coefficients."""
     boat = wp.tid()
     if not (wp.isfinite(rudder_command[boat]) and wp.isfinite(sheet_command[boat])
             and wp.isfinite(wind_velocity[boat])):
@@ -119,6 +122,7 @@ def sailing_rig(
         return
     rotation = orientation[boat]
     nu = velocity[boat]
+    scale = foil_scale[boat]
     up = wp.vec3(0.0, 0.0, 1.0)
     down = wp.vec3(0.0, 0.0, -1.0)
 
@@ -140,7 +144,7 @@ def sailing_rig(
     sail_flow = wind - (point_velocity(nu, sail_center) + swing_velocity)
     sail = foil_force(sail_flow, boom_direction, up, rig.sail_area, rig.air_density, tables.sail_lift,
                       tables.sail_drag, rig.sail_lift_limit)
-    sail_force = _force(sail)
+    sail_force = scale[0] * _force(sail)
     if rig.original_tuning != 0:
         attack = wp.abs(sail[3]) * DEGREES
         if attack < 5.0 or attack > 160.0:
@@ -162,13 +166,13 @@ def sailing_rig(
 
     # Keel and rudder in the water (its orbital velocity at the boat, body frame).
     water = water_velocity[boat]
-    keel_force = _force(foil_force(water - point_velocity(nu, rig.keel_center), wp.vec3(-1.0, 0.0, 0.0), down,
-                                   rig.keel_area, rig.water_density, tables.foil_lift, tables.foil_drag,
-                                   rig.foil_lift_limit))
+    keel_force = scale[1] * _force(foil_force(water - point_velocity(nu, rig.keel_center), wp.vec3(-1.0, 0.0, 0.0),
+                                              down, rig.keel_area, rig.water_density, tables.foil_lift,
+                                              tables.foil_drag, rig.foil_lift_limit))
     rudder_chord = wp.vec3(-wp.cos(rudder), wp.sin(rudder), 0.0)
-    rudder_force = _force(foil_force(water - point_velocity(nu, rig.rudder_center), rudder_chord, down,
-                                     rig.rudder_area, rig.water_density, tables.foil_lift, tables.foil_drag,
-                                     rig.foil_lift_limit))
+    rudder_force = scale[2] * _force(foil_force(water - point_velocity(nu, rig.rudder_center), rudder_chord, down,
+                                                rig.rudder_area, rig.water_density, tables.foil_lift,
+                                                tables.foil_drag, rig.foil_lift_limit))
     if rig.original_tuning != 0:
         rudder_force = 0.3 * rudder_force
         keel_force = keel_force - wp.vec3(0.0, 0.6 * sail_force[1], 0.0)
@@ -195,6 +199,7 @@ def sailing_rig(
 def reset_rig(
     mask: wp.array(dtype=wp.int32),
     sheet: wp.array(dtype=float),
+    new_foil_scale: wp.array(dtype=wp.vec3),
     sheet_limit_max: float,
     rudder_command: wp.array(dtype=float),
     sheet_command: wp.array(dtype=float),
@@ -203,9 +208,11 @@ def reset_rig(
     sheet_limit: wp.array(dtype=float),
     boom_angle: wp.array(dtype=float),
     boom_rate: wp.array(dtype=float),
+    foil_scale: wp.array(dtype=wp.vec3),
 ):
-    """For every boat whose ``mask`` is non-zero: centre the rudder and the boom, stop the propeller, and
-    set the sheet, command and actual boom limit alike, to ``sheet`` [rad] (clamped to [0, max])."""
+    """For every boat whose ``mask`` is non-zero: centre the rudder and the boom, stop the propeller, set
+    the sheet, command and actual boom limit alike, to ``sheet`` [rad] (clamped to [0, max]), and the
+    foil factors to ``new_foil_scale`` (may be ``foil_scale`` itself, to keep them)."""
     boat = wp.tid()
     if mask[boat] == 0:
         return
@@ -217,3 +224,4 @@ def reset_rig(
     sheet_limit[boat] = limit
     boom_angle[boat] = 0.0
     boom_rate[boat] = 0.0
+    foil_scale[boat] = new_foil_scale[boat]

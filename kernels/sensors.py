@@ -16,8 +16,9 @@ Channels (columns of the (boats, 16) reading arrays):
 
 A channel with period p steps refreshes its noisy reading every p steps (and holds it between);
 noise is Gaussian with the channel's standard deviation, plus, for the IMU, a bias drawn per boat at
-reset. Angles are wrapped after the noise. A reset reads the reset boats' every channel at once, so
-no reading of a previous episode survives it.
+reset; both are multiplied by the boat's ``noise_scale`` (domain randomisation, 1: as configured).
+Angles are wrapped after the noise. A reset reads the reset boats' every channel at once, so no
+reading of a previous episode survives it.
 """
 
 from __future__ import annotations
@@ -68,13 +69,14 @@ def read_sensors(
     water_velocity: wp.array(dtype=wp.vec3),
     wind_velocity: wp.array(dtype=wp.vec3),
     imu_bias: wp.array(dtype=vec6),
+    noise_scale: wp.array(dtype=float),
     previous_velocity: wp.array(dtype=wp.vec3),
     truth: wp.array2d(dtype=float),
     measured: wp.array2d(dtype=float),
 ):
     """Readings of every boat whose ``mask`` is non-zero: the truth, and the noisy channels due at step
     ``counter[0]`` (all of them with ``refresh_all``), with noise from the random stream tagged
-    ``stream``. The caller advances ``counter`` once per step."""
+    ``stream``, times the boat's ``noise_scale``. The caller advances ``counter`` once per step."""
     boat = wp.tid()
     if mask[boat] == 0:
         return
@@ -98,10 +100,11 @@ def read_sensors(
                    heading, wp.atan2(-apparent[1], -apparent[0]), wp.sqrt(apparent[0] * apparent[0] + apparent[1] * apparent[1]),
                    through_water)
     bias = imu_bias[boat]
+    scale = noise_scale[boat]
     state = stream_state(sensors.seed, stream, counter[0], boat)
     for c in range(CHANNELS):
         truth[boat, c] = values[c]
-        noise = sensors.noise_std[c] * wp.randn(state)
+        noise = scale * (sensors.noise_std[c] * wp.randn(state))
         if refresh_all != 0 or counter[0] % sensors.period[c] == 0:
             reading = values[c] + noise
             if c >= IMU_FIRST and c <= IMU_LAST:
@@ -119,16 +122,22 @@ def reset_sensors(
     counter: wp.array(dtype=int),
     orientation: wp.array(dtype=wp.quat),
     velocity: wp.array(dtype=vec6),
+    new_noise_scale: wp.array(dtype=float),
     imu_bias: wp.array(dtype=vec6),
     previous_velocity: wp.array(dtype=wp.vec3),
+    noise_scale: wp.array(dtype=float),
 ):
-    """New IMU biases for the boats whose ``mask`` is non-zero, and their velocity as the last one seen
-    (no false jolt)."""
+    """For the boats whose ``mask`` is non-zero: their noise factor from ``new_noise_scale`` (may be
+    ``noise_scale`` itself, to keep it), new IMU biases (times that factor), and their velocity as the
+    last one seen (no false jolt)."""
     boat = wp.tid()
     if mask[boat] == 0:
         return
+    scale = new_noise_scale[boat]
+    noise_scale[boat] = scale
     state = stream_state(seed, IMU_BIAS, counter[0], boat)
-    imu_bias[boat] = vec6(bias_std[0] * wp.randn(state), bias_std[1] * wp.randn(state), bias_std[2] * wp.randn(state),
-                          bias_std[3] * wp.randn(state), bias_std[4] * wp.randn(state), bias_std[5] * wp.randn(state))
+    bias = vec6(bias_std[0] * wp.randn(state), bias_std[1] * wp.randn(state), bias_std[2] * wp.randn(state),
+                bias_std[3] * wp.randn(state), bias_std[4] * wp.randn(state), bias_std[5] * wp.randn(state))
+    imu_bias[boat] = scale * bias
     nu = velocity[boat]
     previous_velocity[boat] = wp.quat_rotate(orientation[boat], wp.vec3(nu[0], nu[1], nu[2]))

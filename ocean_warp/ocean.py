@@ -21,7 +21,8 @@ from .kernels.ocean_spectrum import (
     spectrum_cell,
 )
 from .kernels.ocean_surface import OceanSurface, sample_surface_kernel
-from .ocean_config import OceanConfig
+from . import spectra
+from .ocean_config import OceanConfig, Spectrum
 from .wave_grid import RegularWave, build_wave_grid
 
 __all__ = ["Ocean", "FftPlan", "SurfaceSample"]
@@ -80,8 +81,12 @@ class Ocean:
         self.fft_plan = fft_plan if fft_plan is not None else FftPlan.for_device(n, self.device)
 
         self.wave_grid = build_wave_grid(self.config)
+        """The sea as the config lays it on the grid (the amplitudes before any
+        :meth:`set_significant_wave_height`)."""
         cells_x_major = np.ascontiguousarray(self.wave_grid.cells.transpose(1, 0, 2))
+        self._base_cells = cells_x_major
         self._cells = wp.array(cells_x_major, dtype=spectrum_cell, device=self.device)
+        self._amplitude_scale = 1.0
         self.time = wp.zeros(1, dtype=wp.float64, device=self.device)
         """(1,) float64 time [s] of the fields; kernels may advance it inside a captured graph."""
         # Pass 1 writes packed_spectra (n, n); pass 2 reads the same bytes as vec4f (n, 2 n).
@@ -119,6 +124,57 @@ class Ocean:
                         block_dim=block_dim, device=self.device)
         wp.launch_tiled(self._along_x, dim=[n], inputs=[self._spectra_quads], outputs=[self._field_rows],
                         block_dim=block_dim, device=self.device)
+
+    # --- sea state ------------------------------------------------------------------------------
+    @property
+    def spectrum_significant_wave_height(self) -> float:
+        """Hs [m] of the spectrum the sea is drawn from now: the config's (for a Pierson-Moskowitz sea given by
+        ``wind_speed``, the Hs of that wind's sea), or the last :meth:`set_significant_wave_height`.
+        0 for a "regular" ocean."""
+        return self._spectrum_hs() * self._amplitude_scale
+
+    def _spectrum_hs(self) -> float:
+        config = self.config
+        if config.spectrum is Spectrum.REGULAR:
+            return 0.0
+        if config.spectrum is Spectrum.PIERSON_MOSKOWITZ and config.wind_speed is not None:
+            return spectra.pierson_moskowitz_wind_sea_state(config.wind_speed, config.gravity)[0]
+        return config.significant_wave_height
+
+    def set_significant_wave_height(self, hs: float) -> None:
+        """Change the sea state to a significant wave height of ``hs`` [m] (finite, >= 0; 0 gives a flat
+        sea), keeping its shape: the same spectrum shape, peak period, directions and phases, with every
+        complex amplitude times ``hs / Hs0``, Hs0 the config's spectral Hs (see
+        :attr:`spectrum_significant_wave_height`). So every field is exactly that multiple of the
+        config's sea at the same time, and ``hs`` means what ``OceanConfig.significant_wave_height``
+        means (the grid holds a little less, see :attr:`significant_wave_height`).
+
+        For domain randomisation between rollouts (one sea per ocean; every boat on it shares it). The
+        amplitudes are written into the existing device array (no reallocation), so a captured CUDA
+        graph that updates this ocean stays valid; the fields change at the next :meth:`update`. Scaled
+        from the config's amplitudes every time, so repeated calls do not accumulate rounding.
+        Asynchronous copy on CUDA; call it outside a graph capture.
+
+        Raises ``ValueError`` for a bad ``hs``, for a "regular" ocean (one wave of a given amplitude,
+        not a spectrum: build an Ocean with another ``amplitude`` instead), and for a config with no
+        waves (Hs 0: there is no spectrum to scale; build it with the largest Hs you will use and
+        scale down)."""
+        owner = "Ocean.set_significant_wave_height"
+        if isinstance(hs, bool) or not isinstance(hs, (int, float, np.floating, np.integer)) or not math.isfinite(hs) \
+                or hs < 0.0:
+            raise ValueError(f"{owner}: hs must be a finite number >= 0 [m], got {hs!r}")
+        if self.config.spectrum is Spectrum.REGULAR:
+            raise ValueError(f"{owner}: a \"regular\" ocean is one wave of OceanConfig.amplitude, not a spectrum "
+                             "with a significant wave height; build an Ocean with another amplitude instead")
+        base = self._spectrum_hs()
+        if base <= 0.0:
+            raise ValueError(f"{owner}: this ocean was built with significant_wave_height 0, so it has no spectrum "
+                             "to scale; build it with a non-zero Hs (e.g. the largest you will use) and scale that")
+        scale = float(hs) / base
+        cells = self._base_cells.copy()
+        cells[..., :4] = (self._base_cells[..., :4].astype(np.float64) * scale).astype(np.float32)
+        self._cells.assign(cells)
+        self._amplitude_scale = scale
 
     # --- reading --------------------------------------------------------------------------------
     def sample(self, xy) -> SurfaceSample:
@@ -179,6 +235,8 @@ class Ocean:
 
     @property
     def significant_wave_height(self) -> float:
-        """4 sqrt(variance) [m] of the sea this grid holds: the spectrum's Hs less what falls outside
-        the grid's band (longer than the tile, shorter than two cells or ``min_wavelength``)."""
-        return 4.0 * math.sqrt(self.wave_grid.variance)
+        """4 sqrt(variance) [m] of the sea this grid holds now: the spectrum's Hs
+        (:attr:`spectrum_significant_wave_height`) less what falls outside the grid's band (longer than
+        the tile, shorter than two cells or ``min_wavelength``). Follows
+        :meth:`set_significant_wave_height`."""
+        return 4.0 * math.sqrt(self.wave_grid.variance) * self._amplitude_scale

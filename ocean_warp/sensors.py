@@ -91,7 +91,8 @@ class SensorConfig:
 
 class Sensors:
     """Readings of ``count`` boats: ``truth`` (noise-free) and ``readings`` (noisy, at their rates),
-    both (count, 16), columns as :data:`CHANNEL_NAMES`. A Simulator model: it reads once per step."""
+    both (count, 16), columns as :data:`CHANNEL_NAMES`. A Simulator model: it reads once per step.
+    Each boat's noise (every channel and the IMU bias) is the config's times its ``noise_scale``."""
 
     def __init__(self, config: SensorConfig | None, count: int, *, masthead, wind, step: float, gravity: float,
                  device=None):
@@ -106,6 +107,9 @@ class Sensors:
         self.readings = wp.zeros((self.count, CHANNELS), dtype=float, device=self.device)
         """(N, 16) noisy readings, held between refreshes."""
         self.imu_bias = wp.zeros(self.count, dtype=vec6, device=self.device)
+        self.noise_scale = wp.ones(self.count, dtype=float, device=self.device)
+        """(N,) factor on every channel's noise and on the IMU bias drawn at a reset, per boat (1: as
+        configured, 0: exact readings); set by :meth:`reset_masked`."""
         self._previous_velocity = wp.zeros(self.count, dtype=wp.vec3, device=self.device)
         self._counter = wp.zeros(1, dtype=int, device=self.device)
         self._every_boat = wp.ones(self.count, dtype=wp.int32, device=self.device)
@@ -130,23 +134,25 @@ class Sensors:
         self._counter.zero_()
 
     def reset(self, boats: np.ndarray, fleet) -> None:
-        """Host path of :meth:`reset_masked` for the boats at the indices ``boats``."""
+        """Host path of :meth:`reset_masked` for the boats at the indices ``boats`` (noise factors kept)."""
         with ordered_with_torch(self.device):
             self.reset_masked(mask_of(boats, self.count, self.device), fleet)
 
-    def reset_masked(self, mask: wp.array, fleet) -> None:
-        """For every boat whose ``mask`` (N,) int32 is non-zero: a new IMU bias, no false acceleration on
-        its next reading, and every channel read at once from its new state. Launches only (graph-safe)."""
+    def reset_masked(self, mask: wp.array, fleet, noise_scale: wp.array | None = None) -> None:
+        """For every boat whose ``mask`` (N,) int32 is non-zero: its noise factor from its row of
+        ``noise_scale`` (N,) (None: kept), a new IMU bias, no false acceleration on its next reading, and
+        every channel read at once from its new state. Launches only (graph-safe)."""
         c = self.config
         bias_std = vec6(*([c.accelerometer_bias_std] * 3 + [c.gyroscope_bias_std] * 3))
         wp.launch(reset_sensors, dim=self.count, device=self.device,
-                  inputs=[mask, bias_std, c.seed, self._counter, fleet.orientation, fleet.velocity],
-                  outputs=[self.imu_bias, self._previous_velocity])
+                  inputs=[mask, bias_std, c.seed, self._counter, fleet.orientation, fleet.velocity,
+                          self.noise_scale if noise_scale is None else noise_scale],
+                  outputs=[self.imu_bias, self._previous_velocity, self.noise_scale])
         self._read(mask, True, SENSOR_RESET_NOISE, fleet)
 
     def _read(self, mask: wp.array, refresh_all: bool, stream: int, fleet) -> None:
         wp.launch(read_sensors, dim=self.count, device=self.device,
                   inputs=[mask, int(refresh_all), stream, self._model, self.wind.gusts, self._counter,
                           fleet.position, fleet.orientation, fleet.velocity, fleet.water_velocity,
-                          self.wind.velocity, self.imu_bias],
+                          self.wind.velocity, self.imu_bias, self.noise_scale],
                   outputs=[self._previous_velocity, self.truth, self.readings])

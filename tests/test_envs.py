@@ -75,6 +75,32 @@ def test_seed_start_distribution_follows_the_grids(rng):
     assert cells.min() >= 12 and cells.max() <= 20, "256 origins spread evenly over the 4 x 4 cells of the tile"
 
 
+def test_start_draws_are_independent(rng):
+    """Each part of a start (heading, wind speed and direction, waypoint distance and bearing, surge,
+    sheet, gusts) comes from its own draw: over many environments no two are correlated, and each
+    grid is covered."""
+    start = StartConfig(heading_step_deg=0.0, wind_speed=(2.0, 12.0), wind_direction_step_deg=0.0,
+                        gust_scale=(0.0, 2.0), waypoint_distance=(50.0, 150.0), waypoint_bearing_deg=(-180.0, 180.0),
+                        surge_speed=(0.0, 1.0), sheet_deg=(0.0, 90.0))
+    env = SailingEnv(flat(dataclasses.replace(WaypointConfig(), start=start)), 1024, device="cpu",
+                     seed=int(rng.integers(1 << 30)))
+    rows = env.simulator.tensors.start
+    waypoint = (env.buffers.target - env.buffers.origin).numpy()
+    draws = np.stack([np.cos(np.radians(roll_pitch_yaw(rows.orientation.numpy())[:, 2])),
+                      rows.wind_speed.numpy(), np.cos(rows.wind_direction.numpy()), rows.gust_scale.numpy(),
+                      np.hypot(waypoint[:, 0], waypoint[:, 1]), np.cos(np.arctan2(waypoint[:, 1], waypoint[:, 0])),
+                      rows.velocity.numpy()[:, 0], rows.sheet.numpy()])
+    correlation = np.corrcoef(draws)
+    off_diagonal = np.abs(correlation[~np.eye(len(draws), dtype=bool)])
+    assert off_diagonal.max() < 0.15, np.round(correlation, 2)  # independent: |r| ~ 1/sqrt(1024) = 0.03
+    grid = SailingEnv(flat(WaypointConfig()), 1024, device="cpu", seed=int(rng.integers(1 << 30)))
+    headings = np.round(roll_pitch_yaw(grid.simulator.state.orientation.numpy())[:, 2] / np.radians(20.0))
+    directions = np.round(grid.simulator.state.wind_mean_direction.numpy() / np.radians(10.0))
+    assert len(np.unique(np.mod(headings, 18))) == 18 and len(np.unique(np.mod(directions, 36))) == 36
+    pairs = len({(a, b) for a, b in zip(np.mod(headings, 18), np.mod(directions, 36))})
+    assert pairs > 400, "heading and wind direction grids combine freely (648 pairs)"
+
+
 def apparent_wind(state):
     """Apparent wind angle (from the bow, + to port) [rad] and speed [m/s] at the masthead, from the
     state alone: the world wind turned into the body frame minus the masthead's velocity."""

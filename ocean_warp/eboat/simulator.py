@@ -3,6 +3,7 @@ models wired in, and named views of its state, controls and resets."""
 
 from __future__ import annotations
 
+import dataclasses
 
 import numpy as np
 import warp as wp
@@ -50,23 +51,28 @@ class SailingRig:
         """(N,) boom angle, positive to port [rad]."""
         self.boom_rate = zeros()
         """(N,) [rad/s]."""
+        self.foil_scale = wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=self.device)
+        """(N,) vec3: factors on the lift and drag coefficients of the (sail, keel, rudder) of each boat
+        (1: as tabulated); set per episode by :meth:`reset_masked`."""
 
     def substep(self, simulator) -> None:
         fleet = simulator.fleet
         wp.launch(sailing_rig, dim=self.count, device=self.device,
                   inputs=[self.parameters, self.tables, self.wind.gusts, simulator.config.substep_dt, fleet.position,
                           fleet.orientation, fleet.velocity, fleet.water_velocity, self.wind.velocity,
-                          self.rudder_command, self.sheet_command, self.propeller_command],
+                          self.foil_scale, self.rudder_command, self.sheet_command, self.propeller_command],
                   outputs=[self.rudder_angle, self.sheet_limit, self.boom_angle, self.boom_rate, fleet.model_wrench,
                            fleet.status])
 
-    def reset_masked(self, mask: wp.array, sheet: wp.array) -> None:
+    def reset_masked(self, mask: wp.array, sheet: wp.array, foil_scale: wp.array | None = None) -> None:
         """Boats whose ``mask`` is non-zero: rudder and boom centred, propeller stopped, sheet (command and
-        actual limit) at their row of ``sheet`` [rad]. Launches only (graph-safe)."""
+        actual limit) at their row of ``sheet`` [rad], and their foil factors at their row of
+        ``foil_scale`` (N,) vec3 (None: kept). Launches only (graph-safe)."""
         wp.launch(reset_rig, dim=self.count, device=self.device,
-                  inputs=[mask, sheet, self.parameters.sheet_limit_max],
+                  inputs=[mask, sheet, self.foil_scale if foil_scale is None else foil_scale,
+                          self.parameters.sheet_limit_max],
                   outputs=[self.rudder_command, self.sheet_command, self.propeller_command, self.rudder_angle,
-                           self.sheet_limit, self.boom_angle, self.boom_rate])
+                           self.sheet_limit, self.boom_angle, self.boom_rate, self.foil_scale])
 
 
 class _PointBuoyancyModel:
@@ -80,6 +86,20 @@ class _PointBuoyancyModel:
         wp.launch(point_buoyancy, dim=fleet.count, device=simulator.device,
                   inputs=[self.parameters, simulator.ocean.surface, fleet.position, fleet.orientation],
                   outputs=[fleet.model_wrench])
+
+
+def _fleet(eboat: EBoat, config: EBoatSimulatorConfig, count: int, device) -> tuple[Fleet, np.ndarray]:
+    """The fleet, and each boat's factor on mass and inertia: one boat type without mass variation, else
+    ``config.mass_variants`` types (mass and inertia about the centre of mass scaled; centre of mass,
+    added mass, damping and the hull shared), boat i of type i % K."""
+    factors = config.mass_factors()
+    if len(factors) == 1:
+        return Fleet(eboat.boat_type, count, device=device), np.ones(count)
+    base = eboat.boat_type
+    variants = [dataclasses.replace(base, mass=base.mass * float(f), inertia=base.inertia * float(f),
+                                    name=f"{base.name} x{f:.4g} mass") for f in factors]
+    types = np.arange(count) % len(factors)
+    return Fleet(variants, types=types, device=device), factors[types]
 
 
 class EBoatSimulator:
@@ -116,7 +136,11 @@ class EBoatSimulator:
         self.eboat = EBoat(config.boat)
         if ocean is None:
             ocean = Ocean(config.ocean, device=device)
-        self.fleet = Fleet(self.eboat.boat_type, count, device=device)
+        self.fleet, mass_scale = _fleet(self.eboat, config, count, device)
+        self.mass_scale = mass_scale
+        """(N,) float64 numpy: each boat's factor on the E-Boat's mass and inertia about its centre of mass,
+        fixed for the simulator's life: all 1 without ``config.mass_variation``, else boat i has
+        ``config.mass_factors()[i % K]`` (its BoatType: ``fleet.boat_types[i % K]``)."""
         self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device)
         self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water_density, device=device)
         self.sensors = Sensors(config.sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
@@ -134,7 +158,8 @@ class EBoatSimulator:
             water_velocity=fleet.water_velocity, rudder_angle=rig.rudder_angle, sheet_limit=rig.sheet_limit,
             boom_angle=rig.boom_angle, boom_rate=rig.boom_rate, wind_mean_speed=wind.mean_speed,
             wind_mean_direction=wind.mean_direction, wind_speed=wind.speed, wind_direction=wind.direction,
-            wind_velocity=wind.velocity, gust_scale=wind.gust_scale, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
+            wind_velocity=wind.velocity, gust_scale=wind.gust_scale, foil_scale=rig.foil_scale,
+            noise_scale=sensors.noise_scale, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
         """What moves (Warp arrays; see :class:`EBoatState` for units)."""
         self.control = EBoatControl(rudder=rig.rudder_command, sheet=rig.sheet_command,
                                     propeller=rig.propeller_command, wrench_world=fleet.wrench_world,
@@ -157,12 +182,14 @@ class EBoatSimulator:
         return self.simulator.time
 
     def reset(self, boats=None, *, position=(0.0, 0.0, 0.0), heading=0.0, velocity=None, wind_speed=None,
-              wind_direction=None, sheet=None) -> None:
+              wind_direction=None, sheet=None, foil_scale=None, noise_scale=None) -> None:
         """Host path of :meth:`reset_masked`. Put the chosen boats (None: all) upright at ``position`` [m]
         with ``heading`` [rad, yaw from +x] and ``velocity`` (Fossen nu, default at rest); centre their
         rudder and boom, stop the propeller, and sheet in, or set the sheet (command and actual limit) to
         ``sheet`` [rad, clipped to 0-90 deg]; optionally set their environments' mean wind [m/s, rad]
-        (default: keep it). Scalars and single rows broadcast."""
+        (default: keep it). ``foil_scale``, factors on the (sail, keel, rudder) lift and drag coefficients
+        (a row of 3 per chosen boat), and ``noise_scale``, a factor on each chosen boat's sensor noise,
+        default to 1 (as configured), whatever they were. Scalars and single rows broadcast."""
         owner = "EBoatSimulator.reset"
         indices = require_indices(owner, "boats", boats, self.count)
         k = len(indices)
@@ -179,13 +206,20 @@ class EBoatSimulator:
                                                                                     wind_direction, k)
         if np.any(speeds < 0.0):
             raise ValueError(f"{owner}.wind_speed must be >= 0 [m/s]")
+        foil_scales = require_rows(owner, "foil_scale", np.ones(3) if foil_scale is None else foil_scale, k, 3)
+        if np.any(foil_scales < 0.0):
+            raise ValueError(f"{owner}.foil_scale must be >= 0, got {foil_scale!r}")
+        noise_scales = require_per_item(owner, "noise_scale", 1.0 if noise_scale is None else noise_scale, k)
+        if np.any(noise_scales < 0.0):
+            raise ValueError(f"{owner}.noise_scale must be >= 0, got {noise_scale!r}")
         if k == 0:
             return
         orientations = quaternion_from_roll_pitch_yaw(np.column_stack([np.zeros(k), np.zeros(k), headings]))
         n = self.count
         for name, values in (("position", positions), ("orientation", orientations), ("velocity", velocities),
                              ("sheet", sheets), ("wind_speed", speeds), ("wind_direction", directions),
-                             ("gust_scale", gust_scales)):
+                             ("gust_scale", gust_scales), ("foil_scale", foil_scales),
+                             ("noise_scale", noise_scales)):
             getattr(self.start, name).assign(rows_at(indices, values, n))
         with ordered_with_torch(self.device):
             self.reset_masked(mask_of(indices, n, self.device))
@@ -193,15 +227,16 @@ class EBoatSimulator:
     def reset_masked(self, mask: wp.array, start: EBoatStart | None = None) -> None:
         """Device path of every reset: each boat whose ``mask`` (N,) int32 is non-zero goes to its row of
         ``start`` (default ``self.start``): pose, velocity, sheet and its environment's mean wind, with
-        flags, external wrenches, slamming history, rudder, boom, propeller and gusts cleared, a new IMU
-        bias drawn, and every sensor channel read at once from the new state. Boats not in the mask are
+        flags, external wrenches, slamming history, rudder, boom, propeller and gusts cleared, its foil
+        factors and sensor-noise factor set, a new IMU bias drawn (with that noise factor), and every
+        sensor channel read at once from the new state. Boats not in the mask are
         untouched. It only launches kernels (no allocation, no host copy), so it can run inside a captured
         graph; outside one, wrap it in ``ocean_warp.torch_streams.ordered_with_torch``."""
         start = start if start is not None else self.start
         self.fleet.reset_masked(mask, start.position, start.orientation, start.velocity)
         self.wind.reset_masked(mask, start.wind_speed, start.wind_direction, start.gust_scale)
-        self.rig.reset_masked(mask, start.sheet)
-        self.sensors.reset_masked(mask, self.fleet)
+        self.rig.reset_masked(mask, start.sheet, start.foil_scale)
+        self.sensors.reset_masked(mask, self.fleet, start.noise_scale)
 
     def rewind(self) -> None:
         """Set the simulated time (and so the waves) and the wind's and sensors' random streams back to

@@ -5,6 +5,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 from ..hydrodynamics_config import HydrodynamicsConfig
 from ..ocean_config import OceanConfig
 from ..sensors import SensorConfig
@@ -63,6 +65,14 @@ class EBoatSimulatorConfig:
     """Threads per boat in the hull pass; None: 1 on the CPU, 128 on CUDA."""
     capture_graph: bool = True
     """On CUDA, capture a step as a graph on its first call and replay it."""
+    mass_variation: float = 0.0
+    """Domain randomisation of the boat's mass, as a fraction (0 to 0.3; 0: every boat as built). With
+    v > 0 the fleet holds ``mass_variants`` boat types whose mass and inertia about the centre of mass
+    are the E-Boat's times ``np.linspace(1 - v, 1 + v, mass_variants)``; boat i is variant i % K, for
+    the simulator's life (``EBoatSimulator.mass_scale``). Added mass and damping belong to the water
+    and stay as they are."""
+    mass_variants: int = 5
+    """Number K of mass variants (1 to 64) when ``mass_variation`` > 0; K = 1 is the nominal boat alone."""
 
     def __post_init__(self):
         owner = "EBoatSimulatorConfig"
@@ -76,6 +86,10 @@ class EBoatSimulatorConfig:
         object.__setattr__(self, "gravity", gravity)
         object.__setattr__(self, "dt", require_positive(owner, "dt", self.dt, unit=" [s]"))
         object.__setattr__(self, "substeps", require_int_in_range(owner, "substeps", self.substeps, 1, 1000))
+        object.__setattr__(self, "mass_variation", require_in_range(owner, "mass_variation", self.mass_variation,
+                                                                    0.0, 0.3))
+        object.__setattr__(self, "mass_variants", require_int_in_range(owner, "mass_variants", self.mass_variants,
+                                                                       1, 64))
         object.__setattr__(self, "max_tilt", require_in_range(owner, "max_tilt", self.max_tilt, 0.0, math.pi,
                                                               unit=" [rad]"))
         object.__setattr__(self, "hydrodynamics", dataclasses.replace(self.hydrodynamics, water_density=density,
@@ -84,6 +98,13 @@ class EBoatSimulatorConfig:
             object.__setattr__(self, "ocean", dataclasses.replace(self.ocean, gravity=gravity))
         # The rest is checked where it is used, with the same messages.
         self.simulator_config()
+
+    def mass_factors(self) -> np.ndarray:
+        """(K,) factors on mass and inertia of the fleet's boat types: [1.0] without mass variation, else
+        ``np.linspace(1 - v, 1 + v, K)`` (K = 1: [1.0])."""
+        if self.mass_variation == 0.0 or self.mass_variants == 1:
+            return np.ones(1)
+        return np.linspace(1.0 - self.mass_variation, 1.0 + self.mass_variation, self.mass_variants)
 
     @property
     def substep_dt(self) -> float:

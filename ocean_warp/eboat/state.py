@@ -66,6 +66,12 @@ class EBoatState(_Named):
     """(N,) vec3: current true wind at the reference height, world frame [m/s]."""
     gust_scale: Any
     """(N,) factor on the wind config's gust standard deviations per environment."""
+    foil_scale: Any
+    """(N,) vec3: factors on the lift and drag coefficients of each boat's (sail, keel, rudder) this
+    episode (1: as tabulated)."""
+    noise_scale: Any
+    """(N,) factor on every sensor channel's noise and on the IMU bias of each boat this episode (1: as
+    configured, 0: exact readings)."""
     readings: Any
     """(N, 16) noisy sensor readings, held between refreshes (columns: ``ocean_warp.CHANNEL_NAMES``)."""
     truth: Any
@@ -108,10 +114,14 @@ class EBoatStart(_Named):
     """(N,) new mean true wind direction (towards) [rad]."""
     gust_scale: Any
     """(N,) factor on the wind config's gust standard deviations (1: as configured)."""
+    foil_scale: Any
+    """(N,) vec3: factors on the lift and drag coefficients of the (sail, keel, rudder) (1: as tabulated)."""
+    noise_scale: Any
+    """(N,) factor on the sensor noise and the IMU bias drawn at the reset (1: as configured)."""
 
     @classmethod
     def allocate(cls, count: int, device) -> "EBoatStart":
-        """Upright boats at rest at the world origin, sheeted in, in calm air."""
+        """Upright boats at rest at the world origin, sheeted in, in calm air, foils and sensors as configured."""
         upright = np.tile(np.array([0.0, 0.0, 0.0, 1.0], dtype=np.float32), (count, 1))
         return cls(position=wp.zeros(count, dtype=wp.vec3, device=device),
                    orientation=wp.array(upright, dtype=wp.quat, device=device),
@@ -119,7 +129,9 @@ class EBoatStart(_Named):
                    sheet=wp.zeros(count, dtype=float, device=device),
                    wind_speed=wp.zeros(count, dtype=float, device=device),
                    wind_direction=wp.zeros(count, dtype=float, device=device),
-                   gust_scale=wp.ones(count, dtype=float, device=device))
+                   gust_scale=wp.ones(count, dtype=float, device=device),
+                   foil_scale=wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=device),
+                   noise_scale=wp.ones(count, dtype=float, device=device))
 
 
 class EBoatTensors(NamedTuple):
