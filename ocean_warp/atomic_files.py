@@ -20,6 +20,10 @@ def atomic_output(path: str | os.PathLike, suffix: str = ""):
     os.close(handle)
     try:
         yield temporary
+        # mkstemp creates the file private (0600); give it the mode any new file of the user's gets.
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)
         os.replace(temporary, path)
     except BaseException:
         with contextlib.suppress(FileNotFoundError):
