@@ -8,13 +8,14 @@ reached within 5 m; true wind 10 m/s toward +x with gusts (1 m/s, 0.1 rad); a JO
 ``--sea-state``, Tp 3 s); each run has its own origin on the periodic tile (its own waves) and its own
 random streams. The autopilot (``ocean_warp.envs.autopilot``) takes the place of the policy: it writes
 the actions of every decision (1 s) from the environment's current waypoints. A run's first episode
-is its result: success, time, waypoints, tacks, and how it ended (capsize, lost, time-out).
+is its result: success, time, waypoints, tacks, and how it ended (capsize, lost, time-out). The runs are
+sailed by ``ocean_warp.envs.evaluation`` (the runner of ``ocean-warp eval``, which also draws the paths and
+compares a policy with the autopilot).
 """
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import logging
 import os
 import sys
@@ -26,40 +27,23 @@ import warp as wp
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from ocean_warp.envs import MissionConfig, SailingEnv  # noqa: E402
-from ocean_warp.envs.autopilot import AutopilotConfig, SailingAutopilot  # noqa: E402
+from ocean_warp.envs.autopilot import AutopilotConfig  # noqa: E402
+from ocean_warp.envs.evaluation import evaluate_mission  # noqa: E402
 from ocean_warp.fleet import BoatStatus  # noqa: E402
 
 
 def run_mission(runs: int = 20, *, device="cpu", seed: int = 0, sea_state: float = 0.3,
-                time_limit: float | None = None, autopilot: AutopilotConfig | None = None) -> dict[str, np.ndarray]:
-    """Sail ``runs`` missions at once; per run: success, time [s], waypoints, tacks, status bits at the end."""
-    task = MissionConfig()
-    ocean = dataclasses.replace(task.simulator.ocean, significant_wave_height=sea_state, seed=seed)
-    task = dataclasses.replace(task, simulator=dataclasses.replace(task.simulator, ocean=ocean),
-                               episode_time=time_limit or task.episode_time)
-    env = SailingEnv(task, runs, device=device, seed=seed)
-    pilot = SailingAutopilot(env.simulator, autopilot)
-    pilot.reset()
-    b = env.buffers
-    finished = np.zeros(runs, dtype=bool)
-    result = {name: np.zeros(runs) for name in ("success", "time", "waypoints", "tacks", "status", "time_out")}
-    for decision in range(env.max_episode_length):
-        pilot.act(env.target_world, env.actions)
-        tacks = pilot.tacks.numpy().copy()  # before a reset clears them
-        env.step()
-        done = b.done.cpu().numpy() & ~finished
-        if done.any():
-            for name, values in (("success", b.final_success), ("waypoints", b.final_waypoints),
-                                 ("status", b.final_status), ("time_out", b.time_out)):
-                result[name][done] = values.cpu().numpy()[done]
-            result["time"][done] = b.final_length.cpu().numpy()[done] * task.decision_period
-            result["tacks"][done] = tacks[done]
-            finished |= done
-        pilot.reset(env.reset_mask)
-        if finished.all():
-            break
-    return result
+                time_limit: float | None = None, autopilot: AutopilotConfig | None = None,
+                task=None) -> dict[str, np.ndarray]:
+    """Sail ``runs`` missions at once (``ocean_warp.envs.evaluation``'s runner, the autopilot only); per run:
+    success, time [s], waypoints, the autopilot's own tack count, status bits at the end, time-out.
+    ``task``: the mission config to start from (default ``MissionConfig()``)."""
+    evaluation = evaluate_mission(None, runs, sea_state=sea_state, seed=seed, device=device, time_limit=time_limit,
+                                  autopilot=autopilot if autopilot is not None else True, progress=False, task=task)
+    result = evaluation.results["autopilot"]
+    return {"success": result.success.astype(float), "time": result.time_s, "waypoints": result.waypoints.astype(float),
+            "tacks": result.own_tacks.astype(float), "status": result.status.astype(float),
+            "time_out": result.time_out.astype(float)}
 
 
 def main(argv=None) -> int:

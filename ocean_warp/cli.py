@@ -8,7 +8,9 @@ import sys
 JOBS = {
     "ocean": ("ocean_warp.examples.ocean", "a JONSWAP sea: height field and spectrum PNGs"),
     "drop-hulls": ("ocean_warp.examples.drop_hulls", "hulls of several shapes dropped into waves: heave and roll"),
+    "train": ("ocean_warp.envs.training", "train a sailing policy with rsl-rl PPO (progress, TensorBoard, checkpoints)"),
     "polar": ("ocean_warp.examples.polar", "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
+    "eval": ("ocean_warp.envs.evaluation", "the BCDACA mission 20 times in waves: policy vs autopilot, PNG and CSV"),
 }
 
 
@@ -19,7 +21,9 @@ def main(argv=None) -> None:
     args, rest = parser.parse_known_args(argv[:1])
     module_name = JOBS[args.job][0]
     module = __import__(module_name, fromlist=["main"])
-    module.main(argv[1:] + rest)
+    code = module.main(argv[1:] + rest)
+    if code:
+        sys.exit(code)
 
 
 if __name__ == "__main__":

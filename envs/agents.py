@@ -1,0 +1,201 @@
+"""How each task is trained: one :class:`TrainConfig` per task id (the Isaac Lab habit of an agents config
+beside the task), used by ``ocean-warp train`` and overridable from its command line.
+
+A config names the task the policy is *for* (``task``) and the config it is trained *on*
+(``train_task``): the mission policy, for one, practises single legs of every bearing to the wind and
+then sails the six-waypoint mission, whose observations (toward the current waypoint) are the same.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from typing import Any
+
+from ocean_warp.validation import require_in_range, require_int_in_range, require_positive
+
+from .registration import make_task_config
+from .tasks import MissionConfig, StartConfig, TaskConfig, WaypointPlusConfig
+
+__all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice"]
+
+
+@dataclasses.dataclass(frozen=True)
+class PpoConfig:
+    """rsl-rl's PPO and its actor-critic networks (MLPs)."""
+
+    hidden_dims: tuple[int, ...] = (64, 64)
+    """Hidden layer widths of the actor and of the critic."""
+    activation: str = "elu"
+    init_std: float = 0.8
+    """Initial standard deviation of the Gaussian actions (actions live in [-1, 1])."""
+    obs_normalization: bool = True
+    """Normalise observations with running statistics (kept in the checkpoint)."""
+    learning_rate: float = 1e-3
+    schedule: str = "adaptive"
+    """"adaptive": the learning rate follows ``desired_kl``; "fixed"."""
+    desired_kl: float = 0.01
+    num_learning_epochs: int = 5
+    num_mini_batches: int = 4
+    gamma: float = 0.99
+    """Discount per decision."""
+    lam: float = 0.95
+    clip_param: float = 0.2
+    entropy_coef: float = 0.005
+    value_loss_coef: float = 1.0
+    max_grad_norm: float = 1.0
+
+    def __post_init__(self):
+        owner = "PpoConfig"
+        dims = tuple(self.hidden_dims)
+        if not dims or any(not isinstance(d, int) or isinstance(d, bool) or not 1 <= d <= 4096 for d in dims):
+            raise ValueError(f"{owner}.hidden_dims must be a non-empty sequence of widths 1..4096, got "
+                             f"{self.hidden_dims!r}")
+        object.__setattr__(self, "hidden_dims", dims)
+        for name, allowed in (("activation", ("elu", "relu", "tanh", "selu", "leaky_relu")),
+                              ("schedule", ("adaptive", "fixed"))):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{owner}.{name} must be one of {', '.join(allowed)}, got {getattr(self, name)!r}")
+        for name in ("init_std", "learning_rate", "desired_kl", "clip_param", "max_grad_norm", "value_loss_coef"):
+            require_positive(owner, name, getattr(self, name))
+        for name in ("gamma", "lam"):
+            require_in_range(owner, name, getattr(self, name), 0.0, 1.0)
+        require_in_range(owner, "entropy_coef", self.entropy_coef, 0.0, 1.0)
+        require_int_in_range(owner, "num_learning_epochs", self.num_learning_epochs, 1, 100)
+        require_int_in_range(owner, "num_mini_batches", self.num_mini_batches, 1, 4096)
+
+    def actor_config(self) -> dict[str, Any]:
+        return {"class_name": "MLPModel", "hidden_dims": list(self.hidden_dims), "activation": self.activation,
+                "obs_normalization": self.obs_normalization,
+                "distribution_cfg": {"class_name": "GaussianDistribution", "init_std": self.init_std}}
+
+    def critic_config(self) -> dict[str, Any]:
+        return {"class_name": "MLPModel", "hidden_dims": list(self.hidden_dims), "activation": self.activation,
+                "obs_normalization": self.obs_normalization}
+
+    def runner_config(self, steps_per_env: int) -> dict[str, Any]:
+        """The dict rsl-rl's ``OnPolicyRunner`` takes (5.x layout)."""
+        return {
+            "num_steps_per_env": steps_per_env,
+            "save_interval": 10**9,  # checkpoints are written by ocean_warp's trainer, atomically
+            "obs_groups": {"actor": ["policy"], "critic": ["critic"]},
+            "actor": self.actor_config(),
+            "critic": self.critic_config(),
+            "algorithm": {"class_name": "PPO", "learning_rate": self.learning_rate, "schedule": self.schedule,
+                          "desired_kl": self.desired_kl, "num_learning_epochs": self.num_learning_epochs,
+                          "num_mini_batches": self.num_mini_batches, "gamma": self.gamma, "lam": self.lam,
+                          "clip_param": self.clip_param, "entropy_coef": self.entropy_coef,
+                          "value_loss_coef": self.value_loss_coef, "max_grad_norm": self.max_grad_norm},
+            "logger": "tensorboard",
+        }
+
+
+@dataclasses.dataclass(frozen=True)
+class CurriculumConfig:
+    """The sea grows with success: level k trains in ``sea_states[k]`` (Hs [m]); the trainer moves up a
+    level when the success rate of the episodes that ended over the last ``window`` iterations reaches
+    ``promote_success``. With ``randomize``, each iteration draws Hs uniformly in [0, the level's Hs]
+    (domain randomisation of the sea state: one sea per rollout, every boat in it). Empty
+    ``sea_states``: the task's own sea throughout."""
+
+    sea_states: tuple[float, ...] = ()
+    promote_success: float = 0.8
+    window: int = 5
+    randomize: bool = True
+
+    def __post_init__(self):
+        owner = "CurriculumConfig"
+        states = tuple(float(h) for h in self.sea_states)
+        if any(not math.isfinite(h) or h < 0.0 for h in states) or list(states) != sorted(states):
+            raise ValueError(f"{owner}.sea_states must be increasing wave heights >= 0 [m], got {self.sea_states!r}")
+        object.__setattr__(self, "sea_states", states)
+        require_in_range(owner, "promote_success", self.promote_success, 0.0, 1.0)
+        require_int_in_range(owner, "window", self.window, 1, 10_000)
+
+
+@dataclasses.dataclass(frozen=True)
+class TrainConfig:
+    """Everything ``ocean-warp train`` needs for one task; every field can be set from the command line
+    (``--set ppo.learning_rate=3e-4``)."""
+
+    task: str
+    """The task id the policy is for (its observations and actions)."""
+    train_task: TaskConfig
+    """The config it is trained on (the task itself, or practice for it)."""
+    num_envs_cpu: int = 256
+    """Environments when training on the CPU."""
+    num_envs_cuda: int = 4096
+    """Environments when training on a GPU."""
+    steps_per_env: int = 24
+    """Decisions per environment per PPO iteration."""
+    iterations: int = 300
+    save_interval: int = 50
+    """Iterations between checkpoints; every environment restarts from a seeded reset at each multiple,
+    which is what lets ``--resume`` continue bit for bit."""
+    ppo: PpoConfig = dataclasses.field(default_factory=PpoConfig)
+    curriculum: CurriculumConfig = dataclasses.field(default_factory=CurriculumConfig)
+    random_episode_start: bool = True
+    """Start every segment with random episode lengths, so time-outs do not come in lockstep."""
+
+    def __post_init__(self):
+        owner = "TrainConfig"
+        if not isinstance(self.train_task, TaskConfig):
+            raise ValueError(f"{owner}.train_task must be a TaskConfig, got {self.train_task!r}")
+        require_int_in_range(owner, "num_envs_cpu", self.num_envs_cpu, 1, 2**24)
+        require_int_in_range(owner, "num_envs_cuda", self.num_envs_cuda, 1, 2**24)
+        require_int_in_range(owner, "steps_per_env", self.steps_per_env, 1, 100_000)
+        require_int_in_range(owner, "iterations", self.iterations, 1, 10**9)
+        require_int_in_range(owner, "save_interval", self.save_interval, 1, 10**9)
+        for name, kind in (("ppo", PpoConfig), ("curriculum", CurriculumConfig)):
+            if not isinstance(getattr(self, name), kind):
+                raise ValueError(f"{owner}.{name} must be a {kind.__name__}, got {getattr(self, name)!r}")
+
+    def num_envs(self, device_is_cuda: bool) -> int:
+        return self.num_envs_cuda if device_is_cuda else self.num_envs_cpu
+
+
+def mission_practice() -> MissionConfig:
+    """Single legs for the mission: from rest or under way, any heading, to one waypoint 50-150 m away at
+    any bearing to a gusty 8-12 m/s wind (the mission's legs are 100 and 141 m, reached, run and
+    beaten), on the mission's boat and sea, with the boat's mass and foils varied by 5 %."""
+    base = MissionConfig()
+    start = StartConfig(heading_deg=(-180.0, 180.0), heading_step_deg=0.0, wind_speed=(8.0, 12.0),
+                        wind_direction_deg=(-180.0, 180.0), wind_direction_step_deg=0.0, gust_scale=(0.5, 1.5),
+                        waypoint_distance=(50.0, 150.0), waypoint_bearing_deg=(-180.0, 180.0), position_jitter=1.0,
+                        surge_speed=(0.0, 1.5), sheet_deg=(0.0, 90.0), foil_variation=0.05)
+    simulator = dataclasses.replace(base.simulator, mass_variation=0.05)
+    return dataclasses.replace(base, simulator=simulator, route=None, episode_time=400.0, start=start)
+
+
+def _waypoint() -> TrainConfig:
+    return TrainConfig(task="EBoatWaypoint-v0", train_task=make_task_config("EBoatWaypoint-v0"),
+                       num_envs_cpu=256, num_envs_cuda=4096, steps_per_env=24, iterations=400, save_interval=50)
+
+
+def _waypoint_plus() -> TrainConfig:
+    return TrainConfig(task="EBoatWaypointPlus-v0", train_task=WaypointPlusConfig(), num_envs_cpu=256,
+                       num_envs_cuda=4096, steps_per_env=24, iterations=400, save_interval=50,
+                       ppo=PpoConfig(hidden_dims=(128, 128)))
+
+
+def _mission() -> TrainConfig:
+    return TrainConfig(task="EBoatMission-v0", train_task=mission_practice(), num_envs_cpu=256, num_envs_cuda=4096,
+                       steps_per_env=32, iterations=250, save_interval=50,
+                       curriculum=CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0.75))
+
+
+AGENT_CONFIGS: dict[str, Callable[[], TrainConfig]] = {
+    "EBoatWaypoint-v0": _waypoint,
+    "EBoatWaypointPlus-v0": _waypoint_plus,
+    "EBoatMission-v0": _mission,
+}
+"""The default training config of each task id."""
+
+
+def agent_config(task: str) -> TrainConfig:
+    """The default :class:`TrainConfig` of a task id (with or without the "ocean_warp/" prefix)."""
+    name = task.removeprefix("ocean_warp/")
+    if name not in AGENT_CONFIGS:
+        raise ValueError(f"unknown task {task!r}; known: {', '.join(AGENT_CONFIGS)}")
+    return AGENT_CONFIGS[name]()

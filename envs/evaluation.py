@@ -1,0 +1,589 @@
+"""``ocean-warp eval``: the six-waypoint mission BCDACA, sailed many times in waves by a policy and by the
+classical autopilot, with the paths drawn and the results tabled.
+
+    ocean-warp eval                                  # the shipped mission policy and the autopilot, 20 runs
+    ocean-warp eval --policy out/train/policy.pt --device cuda:0
+    ocean-warp eval --no-policy --runs 5 --sea-state 0.5 --wind 8 --seed 1
+
+Each run is one environment of ``SailingEnv(MissionConfig(...))``: A (0, 0) -> B, C, D, A, C, A, each
+reached within 5 m, in a JONSWAP sea of significant height --sea-state (ocean seed --seed) and a gusty
+true wind (mean --wind, toward +x). Every controller sails the SAME runs: the same task and environment
+seed, so the same waves, gusts and starts. A run's first episode is its result; its path is recorded
+from the start to the end of that episode (the pose after the physics of the last decision, before the
+environment resets the run).
+
+Written into --out (atomically):
+  trajectories.png   all runs' paths, one panel per controller (same axes), over the waypoints
+  results.csv        one row per controller (the table printed at the end)
+  runs.csv           one row per run and controller
+  trajectories.npz   the paths: <controller>_x, _y [m from the run's origin], _heading [rad], _propeller
+                     (level used at each decision), _reached (waypoints reached by each sample), _length
+                     (decisions per run); NaN-padded to the longest run
+
+Columns of results.csv:
+  controller, runs      the controller; runs sailed
+  completed             runs that reached all six waypoints; completion_rate = completed / runs
+  time_mean_s, time_std_s, time_min_s, time_max_s
+                        mission time of the completed runs [s] (decisions x decision period; std with
+                        ddof 0); NaN when none completed
+  distance_mean_m       distance sailed, the sum of the path's segments between decisions [m], mean over
+                        all runs (their first episode, however it ended)
+  tacks_mean, gybes_mean
+                        from the recorded headings, for every controller alike (mean over all runs): a
+                        tack when the true wind's source crosses the bow, a gybe when it crosses the
+                        stern, counted once the heading has settled 10 deg past the wind axis on the new
+                        side (envs/mission_metrics.py: wind_crossings)
+  cross_track_spread_m  how consistent the paths are [m]: on each leg, every run that completed the leg is
+                        resampled at 50 points equally spaced in along-track distance (where the path first
+                        reaches that distance), the population std across those runs of the offset from
+                        the straight leg is taken at each point; the mean over the points, then over the
+                        legs completed by at least two runs (NaN if none)
+  capsizes, lost, time_outs
+                        runs that capsized (BoatStatus.CAPSIZED), drifted beyond the leg's length + 25 m
+                        from their waypoint, or reached the time limit
+  motor_use             fraction of decisions with a propeller level other than 0, mean over runs
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import dataclasses
+import logging
+import math
+import os
+import sys
+from typing import Protocol
+
+import numpy as np
+import torch
+import warp as wp
+
+from ocean_warp.atomic_files import atomic_output
+from ocean_warp.fleet import BoatStatus
+from ocean_warp.frames import roll_pitch_yaw
+from ocean_warp.torch_streams import ordered_with_torch
+
+from .autopilot import AutopilotConfig, SailingAutopilot
+from .core import SailingEnv
+from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
+from .mission_plot import PanelData, plot_trajectories
+from .policy_io import CheckpointError, Policy, load_policy
+from .tasks import MISSION_WAYPOINTS, MissionConfig, ObservationSet, TaskConfig
+
+__all__ = ["Controller", "PolicyController", "AutopilotController", "RunPath", "ControllerResult",
+           "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "mission_task", "sail_mission", "evaluate_mission",
+           "main"]
+
+TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
+                 "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
+                 "lost", "time_outs", "motor_use")
+"""Columns of results.csv (module docstring: their definitions)."""
+RUN_COLUMNS = ("controller", "run", "completed", "end", "time_s", "waypoints", "distance_m", "tacks", "gybes",
+               "own_tacks", "own_gybes", "motor_use", "start_x_m", "start_y_m", "start_heading_deg")
+"""Columns of runs.csv: per run, the first episode's outcome; time_s is when it ended, however it ended;
+own_tacks / own_gybes are the controller's own counts where it keeps them (the autopilot), else empty."""
+
+
+class Controller(Protocol):
+    """What sails the runs: ``reset(env)`` once before the batch starts, ``act(env)`` before each decision
+    (it writes ``env.actions`` / ``env.buffers.actions``), a ``name``. Optionally ``own_counts()``: its own
+    per-run counters ({"tacks": (N,), "gybes": (N,)}), read when runs end."""
+
+    name: str
+
+    def reset(self, env: SailingEnv) -> None: ...
+
+    def act(self, env: SailingEnv) -> None: ...
+
+
+class PolicyController:
+    """A trained :class:`~ocean_warp.envs.policy_io.Policy`: actions = policy(env.buffers.policy_obs)."""
+
+    def __init__(self, policy: Policy, name: str = "policy"):
+        if not isinstance(policy, Policy):
+            raise ValueError(f"PolicyController: policy must be an ocean_warp Policy (load_policy), got {policy!r}")
+        self.policy = policy
+        self.name = name
+
+    def reset(self, env: SailingEnv) -> None:
+        wanted, given = ObservationSet(self.policy.observation), ObservationSet(env.task.observation)
+        if given is not wanted or env.num_policy_obs != self.policy.num_obs:
+            raise ValueError(f"PolicyController: the policy reads the {wanted.value!r} observation "
+                             f"({self.policy.num_obs} values), the environment gives {given.value!r} "
+                             f"({env.num_policy_obs}); build the task with observation={wanted.value!r}")
+        self.policy.to(env.torch_device).eval()
+
+    def act(self, env: SailingEnv) -> None:
+        with torch.inference_mode():
+            env.buffers.actions.copy_(self.policy(env.buffers.policy_obs))
+
+
+class AutopilotController:
+    """The classical :class:`~ocean_warp.envs.autopilot.SailingAutopilot` (``config`` None: its defaults)
+    sailing to each run's current waypoint. It forgets a run's tack side, integrator and counters when the
+    run starts a new episode (``env.reset_mask`` of the last step)."""
+
+    def __init__(self, config: AutopilotConfig | None = None, name: str = "autopilot"):
+        if config is not None and not isinstance(config, AutopilotConfig):
+            raise ValueError(f"AutopilotController: config must be an AutopilotConfig, got {config!r}")
+        self.config = config
+        self.name = name
+        self.pilot: SailingAutopilot | None = None
+
+    def reset(self, env: SailingEnv) -> None:
+        # The defaults, with the heading integrator stepping at the environment's decision period.
+        config = self.config if self.config is not None else AutopilotConfig(decision_period=env.decision_period)
+        self.pilot = SailingAutopilot(env.simulator, config)
+        self.pilot.reset()
+
+    def act(self, env: SailingEnv) -> None:
+        # The runs that ended in the last step started new episodes in it: forget their side and counts
+        # (after their counts were read: the runner reads own_counts() right after the step).
+        self.pilot.reset(env.reset_mask)
+        self.pilot.act(env.target_world, env.actions)
+
+    def own_counts(self) -> dict[str, np.ndarray]:
+        """The autopilot's own tack and gybe counters since each run's episode began."""
+        return {"tacks": self.pilot.tacks.numpy().copy(), "gybes": self.pilot.gybes.numpy().copy()}
+
+
+@dataclasses.dataclass
+class RunPath:
+    """One run's first episode, sampled at its start and after each of its T decisions."""
+
+    xy: np.ndarray
+    """(T + 1, 2) position [m] from the run's origin."""
+    heading: np.ndarray
+    """(T + 1,) heading [rad, from +x counter-clockwise]."""
+    propeller: np.ndarray
+    """(T,) propeller level (-5 ... 5) commanded at each decision."""
+    reached: np.ndarray
+    """(T + 1,) waypoints reached by each sample."""
+
+
+@dataclasses.dataclass
+class ControllerResult:
+    """The runs of one controller: per-run outcomes (arrays of length N) and paths, and their metrics."""
+
+    name: str
+    paths: list[RunPath]
+    success: np.ndarray
+    """(N,) bool: reached every waypoint."""
+    time_s: np.ndarray
+    """(N,) when the first episode ended [s] (the mission time where ``success``)."""
+    waypoints: np.ndarray
+    """(N,) waypoints reached."""
+    status: np.ndarray
+    """(N,) the simulator's BoatStatus bits at the end (0: healthy)."""
+    time_out: np.ndarray
+    """(N,) bool: reached the time limit."""
+    wind_direction: np.ndarray
+    """(N,) mean direction the true wind blows toward [rad]."""
+    route: np.ndarray
+    """(R, 2) waypoints [m] from the origin."""
+    start_point: np.ndarray
+    """(2,) where the route starts [m]."""
+    own_tacks: np.ndarray | None = None
+    """(N,) the controller's own tack count, where it keeps one."""
+    own_gybes: np.ndarray | None = None
+
+    def __post_init__(self):
+        self.distance_m = np.array([path_length(p.xy) for p in self.paths])
+        crossings = np.array([wind_crossings(p.heading, w) for p, w in zip(self.paths, self.wind_direction)],
+                             dtype=np.int64).reshape(-1, 2)
+        self.tacks, self.gybes = crossings[:, 0], crossings[:, 1]
+        self.motor_use = np.array([motor_use(p.propeller) for p in self.paths])
+        self.spread_per_leg, self.cross_track_spread = cross_track_spread(
+            [p.xy for p in self.paths], [p.reached for p in self.paths], self.route, self.start_point)
+
+    @property
+    def runs(self) -> int:
+        return len(self.paths)
+
+    @property
+    def capsized(self) -> np.ndarray:
+        return (self.status & BoatStatus.CAPSIZED) != 0
+
+    @property
+    def lost(self) -> np.ndarray:
+        """Ended healthy, before the time limit, without finishing: beyond the lost distance."""
+        return ~self.success & ~self.time_out & (self.status == 0)
+
+    def end(self, run: int) -> str:
+        status = int(self.status[run])
+        if status & BoatStatus.CAPSIZED:
+            return "capsized"
+        if status:
+            return f"flagged {status}"
+        return "time-out" if self.time_out[run] else "done" if self.success[run] else "lost"
+
+    def summary(self) -> dict:
+        """The controller's row of results.csv (``TABLE_COLUMNS``)."""
+        times = self.time_s[self.success]
+        stat = (lambda f: float(f(times)) if times.size else math.nan)  # noqa: E731
+        return {"controller": self.name, "runs": self.runs, "completed": int(self.success.sum()),
+                "completion_rate": float(self.success.mean()), "time_mean_s": stat(np.mean),
+                "time_std_s": stat(np.std), "time_min_s": stat(np.min), "time_max_s": stat(np.max),
+                "distance_mean_m": float(self.distance_m.mean()), "tacks_mean": float(self.tacks.mean()),
+                "gybes_mean": float(self.gybes.mean()), "cross_track_spread_m": self.cross_track_spread,
+                "capsizes": int(self.capsized.sum()), "lost": int(self.lost.sum()),
+                "time_outs": int(self.time_out.sum()), "motor_use": float(np.nanmean(self.motor_use))}
+
+    def run_rows(self) -> list[dict]:
+        """Its rows of runs.csv (``RUN_COLUMNS``)."""
+        rows = []
+        for i, path in enumerate(self.paths):
+            rows.append({"controller": self.name, "run": i, "completed": int(self.success[i]), "end": self.end(i),
+                         "time_s": float(self.time_s[i]), "waypoints": int(self.waypoints[i]),
+                         "distance_m": float(self.distance_m[i]), "tacks": int(self.tacks[i]),
+                         "gybes": int(self.gybes[i]),
+                         "own_tacks": "" if self.own_tacks is None else int(self.own_tacks[i]),
+                         "own_gybes": "" if self.own_gybes is None else int(self.own_gybes[i]),
+                         "motor_use": float(self.motor_use[i]), "start_x_m": float(path.xy[0, 0]),
+                         "start_y_m": float(path.xy[0, 1]), "start_heading_deg": math.degrees(path.heading[0])})
+        return rows
+
+
+class _RecordedDecision:
+    """One decision of ``env``, launched as ``SailingEnv.step`` launches it (and, on CUDA, captured as one
+    graph likewise), with each boat's pose copied out after the physics and before the task's kernels
+    restart the runs that ended: ``env.step()`` keeps no pose from before that reset, and the last
+    decision of a run is where it reached its last waypoint, capsized or was lost. A test checks that it
+    stays step for step the same as ``env.step()``."""
+
+    def __init__(self, env: SailingEnv):
+        self.env = env
+        self.position = wp.zeros(env.num_envs, dtype=wp.vec3, device=env.device)
+        """(N,) world position after the last decision's physics [m]."""
+        self.orientation = wp.zeros(env.num_envs, dtype=wp.quat, device=env.device)
+        self._graph = None
+
+    def _launch(self) -> None:
+        env, state = self.env, self.env.simulator.state
+        env.launch_actions()
+        for _ in range(env.steps_per_decision):
+            env.simulator.launch_step()
+        wp.copy(self.position, state.position)
+        wp.copy(self.orientation, state.orientation)
+        env.launch_task()
+
+    def __call__(self) -> None:
+        env = self.env
+        with ordered_with_torch(env.device):
+            if not (env.device.is_cuda and env.task.simulator.capture_graph):
+                self._launch()
+                return
+            if self._graph is None:
+                with wp.ScopedCapture(device=env.device) as capture:
+                    self._launch()
+                self._graph = capture.graph
+            wp.capture_launch(self._graph)
+
+
+def _propeller_levels(actions: np.ndarray) -> np.ndarray:
+    """int(5 a0) truncated toward zero, as the environment applies it (0 for a non-finite action)."""
+    a0 = np.nan_to_num(np.asarray(actions, dtype=np.float64)[:, 0], nan=0.0, posinf=0.0, neginf=0.0)
+    return np.trunc(5.0 * np.clip(a0, -1.0, 1.0)).astype(np.int64)
+
+
+def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = False) -> ControllerResult:
+    """Restart ``env`` from its seed (``env.reset(seed=env.seed)``: the same starts, waves and gusts every
+    time) and let ``controller`` sail every run until its first episode ends; record the paths."""
+    if env.task.route is None:
+        raise ValueError("sail_mission: the task has no fixed route (a mission task is needed)")
+    env.reset(seed=env.seed)
+    controller.reset(env)
+    decision = _RecordedDecision(env)
+    n, limit = env.num_envs, env.max_episode_length
+    state = env.simulator.state
+    origin = env.origin.numpy()[:, :2].astype(np.float64)
+    xy = np.full((limit + 1, n, 2), np.nan)
+    heading = np.full((limit + 1, n), np.nan)
+    reached = np.zeros((limit + 1, n), dtype=np.int64)
+    levels = np.zeros((limit, n), dtype=np.int64)
+    xy[0] = state.position.numpy()[:, :2] - origin
+    heading[0] = roll_pitch_yaw(state.orientation.numpy())[:, 2]
+    wind_direction = state.wind_mean_direction.numpy().astype(np.float64).copy()
+    outcome = {name: np.zeros(n, dtype=kind) for name, kind in (
+        ("success", bool), ("time_s", np.float64), ("waypoints", np.int64), ("status", np.int64),
+        ("time_out", bool), ("own_tacks", np.int64), ("own_gybes", np.int64))}
+    length = np.zeros(n, dtype=np.int64)
+    finished = np.zeros(n, dtype=bool)
+    own_counts = getattr(controller, "own_counts", None)
+
+    from tqdm import tqdm
+
+    with tqdm(total=limit, desc=f"{controller.name:>10}", unit="decision", disable=not progress,
+              dynamic_ncols=True) as bar:
+        for k in range(limit):
+            controller.act(env)
+            decision()
+            active = ~finished
+            levels[k, active] = _propeller_levels(env.actions.numpy())[active]
+            xy[k + 1, active] = decision.position.numpy()[active, :2] - origin[active]
+            heading[k + 1, active] = roll_pitch_yaw(decision.orientation.numpy())[active, 2]
+            reached[k + 1] = env.target_index.numpy()
+            length[active] = k + 1
+            done = env.done.numpy() & active
+            if done.any():
+                b = env.buffers
+                final_waypoints = b.final_waypoints.cpu().numpy()
+                reached[k + 1, done] = final_waypoints[done]
+                outcome["success"][done] = b.final_success.cpu().numpy()[done] > 0.5
+                outcome["time_s"][done] = b.final_length.cpu().numpy()[done] * env.decision_period
+                outcome["waypoints"][done] = final_waypoints[done]
+                outcome["status"][done] = b.final_status.cpu().numpy()[done]
+                outcome["time_out"][done] = b.time_out.cpu().numpy()[done]
+                if own_counts is not None:
+                    counts = own_counts()
+                    outcome["own_tacks"][done] = counts["tacks"][done]
+                    outcome["own_gybes"][done] = counts["gybes"][done]
+                finished |= done
+            bar.update(1)
+            bar.set_postfix_str(f"ended {finished.sum()}/{n}, completed {outcome['success'].sum()}", refresh=False)
+            if finished.all():
+                break
+    paths = [RunPath(xy=xy[:length[i] + 1, i].copy(), heading=heading[:length[i] + 1, i].copy(),
+                     propeller=levels[:length[i], i].copy(), reached=reached[:length[i] + 1, i].copy())
+             for i in range(n)]
+    own = {} if own_counts is None else {"own_tacks": outcome["own_tacks"], "own_gybes": outcome["own_gybes"]}
+    return ControllerResult(name=controller.name, paths=paths, success=outcome["success"], time_s=outcome["time_s"],
+                            waypoints=outcome["waypoints"], status=outcome["status"], time_out=outcome["time_out"],
+                            wind_direction=wind_direction, route=np.array(env.task.route, dtype=np.float64),
+                            start_point=np.array(env.task.start_point, dtype=np.float64), **own)
+
+
+def mission_task(*, sea_state: float = 0.3, wind: float = 10.0, seed: int = 0, time_limit: float | None = None,
+                 observation: ObservationSet | str | None = None, task: TaskConfig | None = None) -> TaskConfig:
+    """The mission as ``ocean-warp eval`` sails it: ``task`` (default ``MissionConfig()``) with the sea's
+    significant height ``sea_state`` [m] and seed ``seed``, the mean true wind ``wind`` [m/s] (gusts as the
+    task's), the time limit ``time_limit`` [s] (None: the task's) and the policy's ``observation`` set
+    (None: the task's). Invalid values raise the configs' ``ValueError``."""
+    task = task if task is not None else MissionConfig()
+    if not isinstance(task, TaskConfig) or task.route is None:
+        raise ValueError(f"mission_task: task must be a TaskConfig with a fixed route (a MissionConfig), got {task!r}")
+    simulator = task.simulator
+    ocean = dataclasses.replace(simulator.ocean, significant_wave_height=sea_state, seed=seed)
+    simulator = dataclasses.replace(simulator, ocean=ocean, wind=dataclasses.replace(simulator.wind, speed=wind))
+    changes = {"simulator": simulator, "start": dataclasses.replace(task.start, wind_speed=(wind, wind))}
+    if time_limit is not None:
+        changes["episode_time"] = time_limit
+    if observation is not None:
+        changes["observation"] = observation
+    return dataclasses.replace(task, **changes)
+
+
+@dataclasses.dataclass
+class MissionEvaluation:
+    """What :func:`evaluate_mission` returns: the task sailed, the settings, and one result per controller."""
+
+    task: TaskConfig
+    settings: dict
+    """runs, sea_state [m], wind [m/s], seed, device, time_limit [s]."""
+    results: dict[str, ControllerResult]
+
+    def table(self) -> list[dict]:
+        """One row per controller (``TABLE_COLUMNS``)."""
+        return [result.summary() for result in self.results.values()]
+
+    def format_table(self) -> str:
+        """The table, aligned, one column per controller (a row per column of results.csv)."""
+        rows = self.table()
+        cells = [[column] + [_format(row[column]) for row in rows] for column in TABLE_COLUMNS]
+        widths = [max(len(line[i]) for line in cells) for i in range(len(cells[0]))]
+        return "\n".join("  ".join(cell.ljust(w) if i == 0 else cell.rjust(w) for i, (cell, w) in
+                                   enumerate(zip(line, widths))) for line in cells)
+
+    def write(self, out_dir: str | os.PathLike) -> dict[str, str]:
+        """Write results.csv, runs.csv, trajectories.npz and trajectories.png into ``out_dir``; their paths."""
+        out_dir = os.fspath(out_dir)
+        paths = {name: os.path.join(out_dir, name) for name in
+                 ("results.csv", "runs.csv", "trajectories.npz", "trajectories.png")}
+        _write_csv(paths["results.csv"], TABLE_COLUMNS, self.table())
+        _write_csv(paths["runs.csv"], RUN_COLUMNS, [row for r in self.results.values() for row in r.run_rows()])
+        self._write_npz(paths["trajectories.npz"])
+        self._plot(paths["trajectories.png"])
+        return paths
+
+    def _write_npz(self, path: str) -> None:
+        arrays = {"controllers": np.array(list(self.results)), "route": np.array(self.task.route),
+                  "start_point": np.array(self.task.start_point), "decision_period": self.task.decision_period}
+        for name, result in self.results.items():
+            longest = max(len(p.xy) for p in result.paths)
+            arrays[f"{name}_x"] = _padded([p.xy[:, 0] for p in result.paths], longest)
+            arrays[f"{name}_y"] = _padded([p.xy[:, 1] for p in result.paths], longest)
+            arrays[f"{name}_heading"] = _padded([p.heading for p in result.paths], longest)
+            arrays[f"{name}_reached"] = _padded([p.reached for p in result.paths], longest)
+            arrays[f"{name}_propeller"] = _padded([p.propeller for p in result.paths], longest - 1)
+            arrays[f"{name}_length"] = np.array([len(p.propeller) for p in result.paths])
+            arrays[f"{name}_success"] = result.success
+        with atomic_output(path, suffix=".npz") as temporary:
+            np.savez_compressed(temporary, **arrays)
+
+    def _plot(self, path: str) -> None:
+        panels = []
+        for result in self.results.values():
+            summary = result.summary()
+            mean = summary["time_mean_s"]
+            timing = f", mean {mean:.0f} s" if math.isfinite(mean) else ""
+            panels.append(PanelData(f"{result.name}: {summary['completed']}/{result.runs} completed{timing}",
+                                    [p.xy for p in result.paths]))
+        first = next(iter(self.results.values()))
+        direction = float(np.angle(np.exp(1j * first.wind_direction).mean()))
+        s = self.settings
+        plot_trajectories(panels, path, waypoints=_waypoint_names(self.task.route, self.task.start_point),
+                          start=self.task.start_point, reach_radius=self.task.reach_radius, wind_speed=s["wind"],
+                          wind_direction=direction,
+                          suptitle=f"BCDACA, {s['runs']} runs: Hs {s['sea_state']:g} m JONSWAP, wind {s['wind']:g} m/s "
+                                   f"with gusts, seed {s['seed']}")
+
+
+def _padded(values, size: int) -> np.ndarray:
+    """Rows of different lengths as one float array (len(values), size), NaN after each row's end."""
+    return np.array([np.pad(np.asarray(v, dtype=np.float64), (0, size - len(v)), constant_values=np.nan)
+                     for v in values]).reshape(len(values), size)
+
+
+def _waypoint_names(route, start) -> dict[str, tuple[float, float]]:
+    """Each distinct point of the route (and the start) named as in MISSION_WAYPOINTS, else by number."""
+    names = {}
+    for k, point in enumerate([tuple(start), *route]):
+        known = [name for name, where in MISSION_WAYPOINTS.items() if math.dist(where, point) < 1e-3]
+        if not any(math.dist(where, point) < 1e-3 for where in names.values()):
+            names[known[0] if known else f"W{k}"] = tuple(float(v) for v in point)
+    return names
+
+
+def _format(value) -> str:
+    if isinstance(value, (bool, np.bool_)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        return "nan" if not math.isfinite(value) else f"{value:.6g}"
+    return str(value)
+
+
+def _write_csv(path: str, columns, rows) -> None:
+    with atomic_output(path, suffix=".csv") as temporary:
+        with open(temporary, "w", newline="") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(columns)
+            for row in rows:
+                writer.writerow([_format(row[column]) for column in columns])
+
+
+def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int = 20, sea_state: float = 0.3,
+                     wind: float = 10.0, seed: int = 0, device="cpu", time_limit: float | None = None,
+                     autopilot: bool | AutopilotConfig = True, progress: bool = True, *,
+                     task: TaskConfig | None = None) -> MissionEvaluation:
+    """Sail the mission ``runs`` times with ``policy`` (a Policy, a checkpoint path, or None for none) and with
+    the classical autopilot (``autopilot``: True for its defaults, an AutopilotConfig, or False for none),
+    all on the same runs (one environment per run, the same seed for every controller).
+
+    Args:
+        sea_state: significant wave height Hs [m] of the JONSWAP sea (>= 0).
+        wind: mean true wind speed [m/s] (>= 0), toward +x, with the task's gusts.
+        seed: seed of the sea and of the environments' random streams (starts, gusts).
+        device: Warp device ("cpu", "cuda", "cuda:N").
+        time_limit: per run [s]; None: the task's (1800 s).
+        progress: a progress bar per controller over its decisions.
+        task: the task to start from (default ``MissionConfig()``); for tests (a cheaper boat or sea).
+
+    Raises:
+        ValueError: a bad setting or nothing to evaluate; CheckpointError: an unusable checkpoint path.
+    """
+    if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
+        raise ValueError(f"evaluate_mission: runs must be an integer >= 1, got {runs!r}")
+    for name, value in (("sea_state", sea_state), ("wind", wind)):
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
+            raise ValueError(f"evaluate_mission: {name} must be a finite number >= 0, got {value!r}")
+    if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0.0):
+        raise ValueError(f"evaluate_mission: time_limit must be > 0 [s] or None, got {time_limit!r}")
+    if isinstance(policy, (str, os.PathLike)):
+        policy = load_policy(policy)
+    controllers: list = []
+    if policy is not None:
+        controllers.append(PolicyController(policy))
+    if autopilot is not False and autopilot is not None:
+        controllers.append(AutopilotController(None if autopilot is True else autopilot))
+    if not controllers:
+        raise ValueError("evaluate_mission: nothing to evaluate (no policy and autopilot=False)")
+    config = mission_task(sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
+                          observation=None if policy is None else policy.observation, task=task)
+    env = SailingEnv(config, int(runs), device=device, seed=seed)
+    results = {controller.name: sail_mission(env, controller, progress=progress) for controller in controllers}
+    settings = {"runs": int(runs), "sea_state": float(sea_state), "wind": float(wind), "seed": int(seed),
+                "device": str(env.device), "time_limit": config.episode_time}
+    return MissionEvaluation(task=config, settings=settings, results=results)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="ocean-warp eval", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--policy", default=None, metavar="PATH",
+                        help="policy checkpoint to evaluate (default: the shipped mission policy, "
+                             "ocean_warp/envs/policies/eboat_mission.pt)")
+    parser.add_argument("--no-policy", action="store_true", help="sail the autopilot only")
+    parser.add_argument("--no-autopilot", action="store_true", help="sail the policy only")
+    parser.add_argument("--runs", type=int, default=20, help="missions per controller (default 20)")
+    parser.add_argument("--sea-state", type=float, default=0.3, metavar="HS",
+                        help="significant wave height Hs of the JONSWAP sea [m] (default 0.3)")
+    parser.add_argument("--wind", type=float, default=10.0, help="mean true wind speed [m/s] (default 10)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the sea, the gusts and the starts (default 0)")
+    parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
+                        help="simulated time per run [s] (default: the task's, 1800)")
+    parser.add_argument("--out", default="out/eval", help="folder for the PNG, CSVs and NPZ (default out/eval)")
+    parser.add_argument("--device", default="cpu", help='Warp device: "cpu", "cuda" or "cuda:N" (default cpu)')
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return parser
+
+
+def main(argv=None) -> int:
+    """``ocean-warp eval [options]``: returns 0; bad options and unusable policies exit with status 2."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    wp.config.log_level = logging.WARNING
+    if args.runs < 1:
+        parser.error(f"--runs must be >= 1, got {args.runs}")
+    for option, value in (("--sea-state", args.sea_state), ("--wind", args.wind)):
+        if not (math.isfinite(value) and value >= 0.0):
+            parser.error(f"{option} must be a finite number >= 0, got {value}")
+    if args.time_limit is not None and not (math.isfinite(args.time_limit) and args.time_limit > 0.0):
+        parser.error(f"--time-limit must be > 0 [s], got {args.time_limit}")
+    if args.no_policy and args.no_autopilot:
+        parser.error("--no-policy and --no-autopilot leave nothing to run")
+    if args.no_policy and args.policy is not None:
+        parser.error("--policy and --no-policy contradict each other")
+    try:
+        device = wp.get_device(args.device)
+        mission_task(sea_state=args.sea_state, wind=args.wind, seed=args.seed, time_limit=args.time_limit)
+    except (RuntimeError, ValueError) as error:
+        parser.error(str(error))
+    policy = None
+    if not args.no_policy:
+        from .policies import shipped_policy_path
+
+        try:
+            path = args.policy if args.policy is not None else shipped_policy_path("EBoatMission-v0")
+            policy = load_policy(path)
+        except (CheckpointError, FileNotFoundError) as error:
+            hint = "; --no-policy sails the autopilot alone" if args.policy is None else ""
+            parser.exit(2, f"{parser.prog}: error: {error}{hint}\n")
+        print(f"policy {path}: for {policy.task}, observation {policy.observation!r} ({policy.num_obs} values)")
+    print(f"BCDACA mission: {args.runs} runs per controller, Hs {args.sea_state:g} m, wind {args.wind:g} m/s, "
+          f"seed {args.seed}, device {device}")
+    try:
+        evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
+                                      device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,
+                                      progress=not args.no_progress)
+    except ValueError as error:  # a policy whose observation the task cannot give
+        parser.exit(2, f"{parser.prog}: error: {error}\n")
+    paths = evaluation.write(args.out)
+    print(evaluation.format_table())
+    for path in paths.values():
+        print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,438 @@
+"""``ocean-warp train``: rsl-rl PPO on a sailing task, with a progress bar, TensorBoard logs, atomic
+checkpoints that resume bit for bit, a sea-state curriculum, and the exported policy at the end.
+
+    ocean-warp train --task EBoatWaypoint-v0 --device cpu --minutes 20
+    ocean-warp train --task EBoatMission-v0 --device cuda --iterations 250 --run-name h100
+    ocean-warp train --task EBoatMission-v0 --resume runs/EBoatMission-v0/<date>_<name>/model_99.pt
+
+A run writes into ``runs/<task>/<date>_<name>/``: ``config.json`` (the resolved config),
+rsl-rl's TensorBoard events, ``progress.csv`` (one row per iteration, rewritten after each),
+``model_<it>.pt`` every
+``save_interval`` iterations and at the end, and ``policy.pt`` (the actor alone, kilobytes).
+
+The loop is rsl-rl's ``OnPolicyRunner.learn`` with three additions between iterations: the
+curriculum's sea state, a seeded reset of every environment at each multiple of ``save_interval``
+(so a run resumed from a checkpoint meets exactly the environments the uninterrupted run met), and the
+checkpoint, which holds the torch random state and the curriculum beside the networks.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import contextlib
+import csv
+import dataclasses
+import datetime
+import enum
+import io
+import json
+import math
+import os
+import sys
+import time
+from typing import Any
+
+import numpy as np
+import torch
+
+from ocean_warp.atomic_files import atomic_output
+
+from .agents import TrainConfig, agent_config
+from .core import SailingEnv
+from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
+from .rsl_rl_env import RslRlVecEnv
+
+__all__ = ["train", "TrainResult", "apply_overrides", "main"]
+
+
+@dataclasses.dataclass
+class TrainResult:
+    run_dir: str
+    checkpoint: str
+    """The last training checkpoint written."""
+    policy: str
+    """The exported policy (actor only)."""
+    iterations: int
+    """Iterations done in this call."""
+    wall_time: float
+    """[s] from the start of this call."""
+    history: list[dict[str, float]]
+    """One row per iteration (this call and, resumed, the ones before): see ``progress.csv``."""
+
+
+class _Curriculum:
+    """The sea-state level and the success rates it moves on (its state goes into the checkpoint)."""
+
+    def __init__(self, config, state: dict | None = None):
+        self.config = config
+        self.level = 0
+        self.window: list[float] = []
+        if state:
+            self.level = int(state["level"])
+            self.window = [float(v) for v in state["window"]]
+
+    @property
+    def active(self) -> bool:
+        return bool(self.config.sea_states)
+
+    def sea_state(self, seed: int, iteration: int) -> float | None:
+        """Hs [m] for this iteration (None: no curriculum); drawn from (seed, iteration), not from a stream,
+        so a resumed run draws the same."""
+        if not self.active:
+            return None
+        top = self.config.sea_states[self.level]
+        if not self.config.randomize:
+            return top
+        return float(np.random.default_rng([seed, iteration, 0x5EA]).uniform(0.0, top))
+
+    def record(self, success_rate: float) -> None:
+        if not self.active or math.isnan(success_rate):
+            return
+        self.window = (self.window + [success_rate])[-self.config.window:]
+        full = len(self.window) == self.config.window
+        if full and np.mean(self.window) >= self.config.promote_success and self.level + 1 < len(self.config.sea_states):
+            self.level += 1
+            self.window = []
+
+    def state(self) -> dict:
+        return {"level": self.level, "window": list(self.window)}
+
+
+def _jsonable(value: Any) -> Any:
+    if dataclasses.is_dataclass(value):
+        return {field.name: _jsonable(getattr(value, field.name)) for field in dataclasses.fields(value)}
+    if isinstance(value, enum.Enum):
+        return value.value
+    if isinstance(value, (tuple, list)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    return value
+
+
+def _write_json(path: str, data: Any) -> None:
+    with atomic_output(path) as temporary, open(temporary, "w") as stream:
+        json.dump(data, stream, indent=2)
+
+
+def _write_history(path: str, history: list[dict[str, float]]) -> None:
+    if not history:
+        return
+    with atomic_output(path) as temporary, open(temporary, "w", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=list(history[0]))
+        writer.writeheader()
+        writer.writerows(history)
+
+
+def _segment_seed(seed: int, iteration: int) -> int:
+    return int(np.random.default_rng([seed, iteration, 0x5E6]).integers(0, 2**31 - 1))
+
+
+def _restart_segment(vec: RslRlVecEnv, config: TrainConfig, seed: int, iteration: int,
+                     full_budget: torch.Tensor) -> None:
+    """Every environment from a reset seeded by (seed, iteration), episode lengths spread at random.
+
+    ``full_budget`` (N,) bool is set to whether each env's current episode has its whole time budget:
+    an episode whose clock was started part-way ends early by construction, and counting it would
+    show a failure the policy did not make.
+    """
+    vec.reset(seed=_segment_seed(seed, iteration))
+    full_budget.fill_(not config.random_episode_start)
+    if config.random_episode_start:
+        generator = torch.Generator().manual_seed(_segment_seed(seed, iteration) + 1)
+        lengths = torch.randint(0, int(vec.max_episode_length), (vec.num_envs,), generator=generator)
+        vec.episode_length_buf = lengths.to(device=vec.device, dtype=vec.episode_length_buf.dtype)
+
+
+def _default_run_dir(task: str, run_name: str | None, root: str) -> str:
+    stamp = datetime.datetime.now().strftime("%Y-%m-%d_%H-%M-%S")
+    return os.path.join(root, task, f"{stamp}_{run_name}" if run_name else stamp)
+
+
+def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: str | None = None,
+          run_name: str | None = None, runs_root: str = "runs", num_envs: int | None = None,
+          iterations: int | None = None, minutes: float | None = None, resume: str | None = None,
+          progress: bool = True) -> TrainResult:
+    """Train a policy with rsl-rl PPO.
+
+    Args:
+        config: the task's training config (``agents.agent_config(task)``, changed as wished).
+        device: "cpu", "cuda" or "cuda:N": the simulator and the networks both live there.
+        seed: seeds the environments' random streams, the networks' initialisation and PPO's sampling.
+        run_dir: where to write (default ``runs_root/<task>/<date>_<run_name>``).
+        num_envs: environments (default: the config's for this device).
+        iterations: PPO iterations to run in this call (default: the config's).
+        minutes: stop after the iteration that passes this much wall time (an upper bound on
+            ``iterations``).
+        resume: a training checkpoint (``model_<it>.pt``) to continue from: networks, optimiser, torch
+            random state, curriculum; the next iteration is the one after it.
+        progress: show a progress bar.
+
+    Returns:
+        a :class:`TrainResult`.
+    """
+    from rsl_rl.runners import OnPolicyRunner
+
+    device = _resolve_device(device)
+    is_cuda = device.startswith("cuda")
+    num_envs = config.num_envs(is_cuda) if num_envs is None else int(num_envs)
+    iterations = config.iterations if iterations is None else int(iterations)
+    if iterations < 1:
+        raise ValueError(f"iterations must be >= 1, got {iterations}")
+    if minutes is not None and not (math.isfinite(minutes) and minutes > 0):
+        raise ValueError(f"minutes must be a positive number, got {minutes}")
+
+    checkpoint = None
+    if resume is not None:
+        checkpoint = read_checkpoint(resume)
+        _check_resumable(checkpoint, config, resume)
+        if run_dir is None:
+            run_dir = os.path.dirname(os.path.abspath(resume))
+    run_dir = run_dir or _default_run_dir(config.task, run_name, runs_root)
+    os.makedirs(run_dir, exist_ok=True)
+    resolved = {"task": config.task, "device": device, "seed": seed, "num_envs": num_envs,
+                "train_config": _jsonable(config)}
+    _write_json(os.path.join(run_dir, "config.json"), resolved)
+
+    torch.manual_seed(seed)
+    env = SailingEnv(config.train_task, num_envs, device=device, seed=seed)
+    vec = RslRlVecEnv(env)
+    buffers = env.buffers
+    full_budget = torch.zeros(num_envs, dtype=torch.bool, device=vec.device)
+    runner_config = config.ppo.runner_config(config.steps_per_env)
+    with contextlib.redirect_stdout(io.StringIO()):  # rsl-rl prints the networks; the bar says enough
+        runner = OnPolicyRunner(vec, runner_config, log_dir=run_dir, device=str(vec.device))
+    alg = runner.alg
+    curriculum = _Curriculum(config.curriculum, checkpoint["curriculum"] if checkpoint else None)
+    history: list[dict[str, float]] = []
+    start_iteration = 0
+    if checkpoint is not None:
+        alg.load(checkpoint, None, strict=True)
+        torch.set_rng_state(checkpoint["torch_rng_state"])
+        if is_cuda and "cuda_rng_state" in checkpoint:
+            torch.cuda.set_rng_state(checkpoint["cuda_rng_state"], device=torch.device(device))
+        start_iteration = int(checkpoint["iteration"]) + 1
+        history = [dict(row) for row in checkpoint.get("history", [])]
+    ocean = env.simulator.ocean
+    base_sea_state = ocean.significant_wave_height
+
+    runner.logger.git_status_repos = []  # rsl-rl would store its own repository's git diff in the run
+    with contextlib.redirect_stdout(io.StringIO()):
+        runner.logger.init_logging_writer()
+    with contextlib.suppress(OSError):
+        os.rmdir(os.path.join(run_dir, "git"))  # left empty by rsl-rl when it stores no repository
+    alg.train_mode()
+    decisions_per_iteration = num_envs * config.steps_per_env
+    bar = _progress_bar(progress, iterations if iterations < 10**8 else None, config.task)
+    started = time.perf_counter()
+    wall_before = history[-1]["wall_time_s"] if history else 0.0
+    last_checkpoint = resume or ""
+    iteration = start_iteration - 1
+    try:
+        for iteration in range(start_iteration, start_iteration + iterations):
+            if iteration % config.save_interval == 0 or iteration == start_iteration:
+                _restart_segment(vec, config, seed, iteration - iteration % config.save_interval, full_budget)
+            sea_state = curriculum.sea_state(seed, iteration)
+            if sea_state is not None:
+                ocean.set_significant_wave_height(sea_state)
+            tic = time.perf_counter()
+            ended = torch.zeros((), device=vec.device)
+            successes = torch.zeros((), device=vec.device)
+            returns = torch.zeros((), device=vec.device)
+            with torch.inference_mode():
+                obs = vec.get_observations()
+                for _ in range(config.steps_per_env):
+                    actions = alg.act(obs)
+                    obs, rewards, dones, extras = vec.step(actions)
+                    alg.process_env_step(obs, rewards, dones, extras)
+                    runner.logger.process_env_step(rewards, dones, extras, None)
+                    counted = dones.bool() & full_budget
+                    ended += counted.sum()
+                    successes += (buffers.final_success * counted).sum()
+                    returns += (buffers.final_return * counted).sum()
+                    full_budget |= dones.bool()
+                alg.compute_returns(obs)
+            collect_time = time.perf_counter() - tic
+            tic = time.perf_counter()
+            losses = alg.update()
+            learn_time = time.perf_counter() - tic
+            runner.current_learning_iteration = iteration
+            with contextlib.redirect_stdout(io.StringIO()):
+                runner.logger.log(it=iteration, start_it=start_iteration, total_it=start_iteration + iterations,
+                                  collect_time=collect_time, learn_time=learn_time, loss_dict=losses,
+                                  learning_rate=alg.learning_rate, action_std=alg.get_policy().output_std,
+                                  rnd_weight=None)
+            count = float(ended.item())
+            success_rate = float(successes.item()) / count if count else float("nan")
+            mean_return = float(returns.item()) / count if count else float("nan")
+            curriculum.record(success_rate)
+            decisions_per_second = decisions_per_iteration / (collect_time + learn_time)
+            row = {"iteration": iteration,
+                   "samples": (history[-1]["samples"] if history else 0) + decisions_per_iteration,
+                   "wall_time_s": wall_before + time.perf_counter() - started, "episodes": count,
+                   "mean_return": mean_return, "success_rate": success_rate, "decisions_per_s": decisions_per_second,
+                   "real_time_factor": decisions_per_second * env.decision_period,
+                   "sea_state_m": base_sea_state if sea_state is None else sea_state,
+                   "curriculum_level": curriculum.level, "learning_rate": alg.learning_rate,
+                   "collect_s": collect_time, "learn_s": learn_time}
+            history.append(row)
+            if writer := runner.logger.writer:
+                writer.add_scalar("Episode/success_rate", success_rate if count else 0.0, iteration)
+                writer.add_scalar("Curriculum/sea_state_m", row["sea_state_m"], iteration)
+                writer.add_scalar("Perf/real_time_factor", row["real_time_factor"], iteration)
+            _update_bar(bar, row)
+            last = iteration == start_iteration + iterations - 1
+            out_of_time = minutes is not None and time.perf_counter() - started >= 60.0 * minutes
+            if (iteration + 1) % config.save_interval == 0 or last or out_of_time:
+                last_checkpoint = _save(run_dir, iteration, alg, config, env, curriculum, history, device)
+            _write_history(os.path.join(run_dir, "progress.csv"), history)
+            if out_of_time:
+                break
+    finally:
+        if bar is not None:
+            bar.close()
+        with contextlib.redirect_stdout(io.StringIO()):
+            runner.logger.stop_logging_writer()
+    policy_path = os.path.join(run_dir, "policy.pt")
+    export_policy(read_checkpoint(last_checkpoint), policy_path)
+    return TrainResult(run_dir=run_dir, checkpoint=last_checkpoint, policy=policy_path,
+                       iterations=iteration - start_iteration + 1, wall_time=time.perf_counter() - started,
+                       history=history)
+
+
+def _save(run_dir: str, iteration: int, alg, config: TrainConfig, env: SailingEnv, curriculum: _Curriculum,
+          history: list[dict[str, float]], device: str) -> str:
+    path = os.path.join(run_dir, f"model_{iteration}.pt")
+    payload = dict(alg.save())
+    payload.update({
+        "task": config.task, "observation": env.task.observation.value if hasattr(env.task.observation, "value")
+        else str(env.task.observation), "num_obs": env.num_policy_obs, "num_actions": env.num_actions,
+        "actor_config": config.ppo.actor_config(), "critic_config": config.ppo.critic_config(),
+        "iteration": iteration, "torch_rng_state": torch.get_rng_state(), "curriculum": curriculum.state(),
+        "history": history, "train_config": json.dumps(_jsonable(config)),
+    })
+    if device.startswith("cuda"):
+        payload["cuda_rng_state"] = torch.cuda.get_rng_state(torch.device(device))
+    save_checkpoint(path, payload)
+    return path
+
+
+def _check_resumable(checkpoint: dict, config: TrainConfig, path: str) -> None:
+    if "optimizer_state_dict" not in checkpoint or "iteration" not in checkpoint:
+        raise CheckpointError(f"checkpoint {path!r} is an exported policy, not a training checkpoint: it has no "
+                              "optimiser state to resume from (use a model_<it>.pt of the run)")
+    if checkpoint["task"].removeprefix("ocean_warp/") != config.task:
+        raise CheckpointError(f"checkpoint {path!r} was trained for {checkpoint['task']}, not {config.task}")
+    if checkpoint["actor_config"] != config.ppo.actor_config():
+        raise CheckpointError(f"checkpoint {path!r} has actor {checkpoint['actor_config']}, but this run builds "
+                              f"{config.ppo.actor_config()}")
+
+
+def _resolve_device(device: str) -> str:
+    device = str(device)
+    if device == "cuda":
+        device = "cuda:0"
+    if device != "cpu" and not (device.startswith("cuda:") and device[5:].isdigit()):
+        raise ValueError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
+    if device.startswith("cuda"):
+        import warp as wp
+
+        if not wp.is_cuda_available() or int(device[5:]) >= wp.get_cuda_device_count():
+            raise ValueError(f"device {device!r}: Warp sees {wp.get_cuda_device_count()} CUDA device(s)")
+    return device
+
+
+def _progress_bar(enabled: bool, total: int, task: str):
+    if not enabled:
+        return None
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=task, unit="it", dynamic_ncols=True, file=sys.stderr)
+
+
+def _update_bar(bar, row: dict[str, float]) -> None:
+    if bar is None:
+        return
+    bar.set_postfix_str(f"return {row['mean_return']:.2f}  success {100 * row['success_rate']:.0f}%  "
+                        f"{row['decisions_per_s'] / 1e3:.1f}k dec/s  RTF {row['real_time_factor']:.0f}  "
+                        f"Hs {row['sea_state_m']:.2f} m", refresh=False)
+    bar.update(1)
+
+
+# --- command line ----------------------------------------------------------------------------------
+
+def apply_overrides(config: Any, assignments: list[str]) -> Any:
+    """``config`` with fields replaced by ``"a.b=value"`` assignments (value as a Python literal, else a
+    string); each nested dataclass is rebuilt with ``dataclasses.replace``, so its validation runs."""
+    for assignment in assignments:
+        if "=" not in assignment:
+            raise ValueError(f"--set {assignment!r}: expected field=value, e.g. ppo.learning_rate=3e-4")
+        path, text = assignment.split("=", 1)
+        try:
+            value = ast.literal_eval(text)
+        except (ValueError, SyntaxError):
+            value = text
+        config = _replace_path(config, path.strip().split("."), value, path)
+    return config
+
+
+def _replace_path(obj: Any, names: list[str], value: Any, full: str) -> Any:
+    if not dataclasses.is_dataclass(obj):
+        raise ValueError(f"--set {full}: {type(obj).__name__} has no fields")
+    fields = {field.name for field in dataclasses.fields(obj)}
+    if names[0] not in fields:
+        raise ValueError(f"--set {full}: {type(obj).__name__} has no field {names[0]!r}; fields: "
+                         f"{', '.join(sorted(fields))}")
+    if len(names) > 1:
+        value = _replace_path(getattr(obj, names[0]), names[1:], value, full)
+    return dataclasses.replace(obj, **{names[0]: value})
+
+
+def _parser() -> argparse.ArgumentParser:
+    from .agents import AGENT_CONFIGS
+
+    parser = argparse.ArgumentParser(
+        prog="ocean-warp train", description="Train a sailing policy with rsl-rl PPO (progress bar, TensorBoard "
+        "logs, atomic checkpoints in runs/<task>/<date>_<name>/, the policy exported as policy.pt).",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument("--task", default="EBoatWaypoint-v0", choices=list(AGENT_CONFIGS), help="task id")
+    parser.add_argument("--device", default="cpu", help="cpu, cuda or cuda:N (simulator and networks)")
+    parser.add_argument("--num-envs", type=int, default=None,
+                        help="parallel boats (default: the task's, 256 on the CPU, 4096 on a GPU)")
+    length = parser.add_argument_group("how long (either, or both: the first reached ends it)")
+    length.add_argument("--iterations", type=int, default=None, help="PPO iterations (default: the task's)")
+    length.add_argument("--minutes", type=float, default=None, help="wall-time limit")
+    parser.add_argument("--seed", type=int, default=0, help="seed of environments, networks and sampling")
+    parser.add_argument("--run-name", default=None, help="suffix of the run folder")
+    parser.add_argument("--runs-root", default="runs", help="folder that holds <task>/<date>_<name>/")
+    parser.add_argument("--resume", default=None, metavar="PATH",
+                        help="continue from a training checkpoint (model_<it>.pt), in its folder")
+    parser.add_argument("--set", dest="overrides", action="append", default=[], metavar="FIELD=VALUE",
+                        help="change a field of the task's TrainConfig, e.g. ppo.learning_rate=3e-4, "
+                        "steps_per_env=32, train_task.decision_period=2.0 (repeatable)")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        config = apply_overrides(agent_config(args.task), args.overrides)
+        if args.minutes is not None and args.iterations is None:
+            iterations = 10**9
+        else:
+            iterations = args.iterations
+        result = train(config, device=args.device, seed=args.seed, run_name=args.run_name, runs_root=args.runs_root,
+                       num_envs=args.num_envs, iterations=iterations, minutes=args.minutes, resume=args.resume,
+                       progress=not args.no_progress)
+    except (CheckpointError, ValueError) as error:
+        print(f"ocean-warp train: {error}", file=sys.stderr)
+        return 2
+    last = result.history[-1] if result.history else {}
+    print(f"{result.iterations} iterations in {result.wall_time:.0f} s; last: success "
+          f"{100 * last.get('success_rate', float('nan')):.0f}%, return {last.get('mean_return', float('nan')):.2f}")
+    print(f"checkpoint {result.checkpoint}\npolicy     {result.policy}")
+    return 0

@@ -1,0 +1,340 @@
+"""``ocean-warp eval`` (ocean_warp.envs.evaluation): the path metrics on hand-made paths, a tiny evaluation of
+a random policy and the autopilot on the CPU, the command line, and the runner's decision against
+``SailingEnv.step``."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+import torch
+
+from ocean_warp import cli
+from ocean_warp.eboat import EBoatConfig, Hydrostatics
+from ocean_warp.envs import MissionConfig, SailingEnv, policies
+from ocean_warp.envs.evaluation import _RecordedDecision, evaluate_mission, main, mission_task
+from ocean_warp.envs.mission_metrics import (
+    cross_track_profile,
+    cross_track_spread,
+    leg_indices,
+    motor_use,
+    path_length,
+    wind_crossings,
+)
+from ocean_warp.envs.policy_io import build_actor, load_policy, save_checkpoint
+from ocean_warp.ocean_config import OceanConfig
+
+DEG = math.pi / 180.0
+COLUMNS = ["controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
+           "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes", "lost",
+           "time_outs", "motor_use"]
+
+
+def tiny_mission(**changes) -> MissionConfig:
+    """The mission on the four-point hydrostatics and a 16 x 16 sea: cheap enough for a test on the CPU."""
+    task = MissionConfig()
+    simulator = dataclasses.replace(
+        task.simulator, boat=EBoatConfig(hydrostatics=Hydrostatics.POINTS), ocean_every_substep=False,
+        ocean=OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.3, peak_period=3.0))
+    return dataclasses.replace(task, simulator=simulator, **changes)
+
+
+def random_policy_file(path) -> None:
+    config = {"class_name": "MLPModel", "hidden_dims": [32, 32], "activation": "relu", "obs_normalization": False,
+              "distribution_cfg": {"class_name": "GaussianDistribution", "init_std": 1.0}}
+    torch.manual_seed(0)
+    actor = build_actor(5, 3, config)
+    save_checkpoint(path, {"task": "EBoatMission-v0", "observation": "seed", "num_obs": 5, "num_actions": 3,
+                           "actor_config": config, "actor_state_dict": actor.state_dict()})
+
+
+# --- metrics on hand-made paths ----------------------------------------------------------------------
+
+def zigzag(headings_deg, block: int):
+    """Positions and per-sample headings of a path of ``block`` unit-speed steps per heading."""
+    headings = np.repeat(np.radians(headings_deg), block)
+    steps = np.column_stack([np.cos(headings), np.sin(headings)])
+    xy = np.vstack([[0.0, 0.0], np.cumsum(steps, axis=0)])
+    return xy, np.append(headings, headings[-1])
+
+
+def test_straight_path():
+    xy = np.column_stack([np.linspace(0.0, 30.0, 31), np.linspace(0.0, 40.0, 31)])
+    assert path_length(xy) == pytest.approx(50.0)
+    assert wind_crossings(np.full(31, 53.13 * DEG), 0.0) == (0, 0)
+    assert path_length(np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 4.0]])) == pytest.approx(7.0)
+    assert path_length(np.zeros((1, 2))) == 0.0
+
+
+def test_zigzag_upwind_tacks_and_downwind_gybes():
+    """Wind toward +x (from -x). Beating west: four boards 45 deg either side of the wind's source (heading 135
+    and -135 deg), 3 steps each: 3 tacks, no gybe, 12 m sailed. Running east with gybes: headings +-30 deg,
+    four boards: 3 gybes, no tack."""
+    xy, heading = zigzag([135.0, -135.0, 135.0, -135.0], block=3)
+    assert path_length(xy) == pytest.approx(12.0)
+    assert np.allclose(xy[-1], [-12.0 / math.sqrt(2.0), 0.0])
+    assert wind_crossings(heading, 0.0) == (3, 0)
+    assert wind_crossings(heading, 0.0, margin=0.0) == (3, 0)
+    _, heading = zigzag([30.0, -30.0, 30.0, -30.0], block=5)
+    assert wind_crossings(heading, 0.0) == (0, 3)
+    # The same beat, sampled through each turn: still one tack per turn.
+    turn = np.radians([135.0, 150.0, 170.0, 190.0, 210.0, 225.0, 225.0, 200.0, 175.0, 150.0, 135.0])
+    assert wind_crossings(turn, 0.0) == (2, 0)
+
+
+def test_crossings_yawing_failed_tack_and_full_circle():
+    """Yawing +-5 deg about head to wind: nothing with the 10 deg margin, every sign flip without one. A tack
+    that goes 5 deg through the wind and falls back: nothing (2 flips without margin). A full turn to port
+    from a reach: the wind crosses the bow once and the stern once. A wind that veers across the stern of a
+    boat holding its course: one gybe (wind direction given per sample)."""
+    yaw = np.radians(180.0 + 5.0 * (-1.0) ** np.arange(20))
+    assert wind_crossings(yaw, 0.0) == (0, 0)
+    assert wind_crossings(yaw, 0.0, margin=0.0) == (19, 0)
+    failed = np.radians([135.0, 160.0, 175.0, 185.0, 160.0, 135.0])
+    assert wind_crossings(failed, 0.0) == (0, 0)
+    assert wind_crossings(failed, 0.0, margin=0.0) == (2, 0)
+    circle = np.radians(np.arange(10.0, 391.0, 10.0))  # 10 ... 390 deg
+    assert wind_crossings(circle, 0.0) == (1, 1)
+    assert wind_crossings(np.zeros(7), np.radians(np.linspace(30.0, -30.0, 7))) == (0, 1)
+    with pytest.raises(ValueError, match="margin"):
+        wind_crossings(circle, 0.0, margin=math.pi / 2)
+
+
+def test_motor_use():
+    assert motor_use([0, 1, -2, 0]) == 0.5
+    assert motor_use(np.zeros(10, dtype=int)) == 0.0
+    assert math.isnan(motor_use([]))
+
+
+def test_cross_track_profile_by_hand():
+    """A path that doubles back along the leg (0, 0) -> (20, 0): the offset where it first reaches each
+    along-track distance 0, 5, 10, 15, 20 m."""
+    path = np.array([[0.0, 0.0], [10.0, 10.0], [5.0, 10.0], [20.0, -10.0]])
+    np.testing.assert_allclose(cross_track_profile(path, (0.0, 0.0), (20.0, 0.0), points=5),
+                               [0.0, 5.0, 10.0, 10.0 - 20.0 * 10.0 / 15.0, -10.0])
+    # Short of the end: the last point's offset; starting beyond 0: the first point's.
+    np.testing.assert_allclose(cross_track_profile([[0.0, 1.0], [8.0, 2.0]], (0.0, 0.0), (10.0, 0.0), points=3),
+                               [1.0, 1.625, 2.0])
+    np.testing.assert_allclose(cross_track_profile([[2.0, 3.0], [10.0, 3.0]], (0.0, 0.0), (10.0, 0.0), points=3),
+                               [3.0, 3.0, 3.0])
+    # Left of the leg is positive: a leg toward +y, a path at x = -2.
+    np.testing.assert_allclose(cross_track_profile([[-2.0, 0.0], [-2.0, 10.0]], (0.0, 0.0), (0.0, 10.0)), 2.0)
+
+
+def test_cross_track_spread_by_hand():
+    """Route (100, 0) then (100, 100) from (0, 0). Runs 1 and 2 sail both legs offset by +d and -d from the
+    straight legs (spread d: population std); run 3 sails leg 0 on the line and stops there (leg 0:
+    std of (d, -d, 0) = d sqrt(2/3)); run 4 never finishes leg 0 and counts nowhere."""
+    d = 3.0
+    route, start = [(100.0, 0.0), (100.0, 100.0)], (0.0, 0.0)
+    run1 = np.array([[0.0, d], [50.0, d], [100.0 + d, d], [100.0 + d, 50.0], [100.0 + d, 100.0 + d]])
+    run2 = np.array([[0.0, -d], [50.0, -d], [100.0 - d, -d], [100.0 - d, 50.0], [100.0 - d, 100.0 - d]])
+    run3 = np.array([[0.0, 0.0], [50.0, 0.0], [100.0, 0.0], [100.0, 0.0]])
+    run4 = np.array([[0.0, 20.0], [60.0, 20.0]])
+    reached = [np.array([0, 0, 1, 1, 2]), np.array([0, 0, 1, 1, 2]), np.array([0, 0, 1, 1]), np.array([0, 0])]
+    np.testing.assert_array_equal(leg_indices(reached[0], 0), [0, 1, 2])
+    np.testing.assert_array_equal(leg_indices(reached[0], 1), [2, 3, 4])
+    per_leg, mean = cross_track_spread([run1, run2], reached[:2], route, start)
+    np.testing.assert_allclose(per_leg, [d, d])
+    assert mean == pytest.approx(d)
+    per_leg, mean = cross_track_spread([run1, run2, run3, run4], reached, route, start)
+    np.testing.assert_allclose(per_leg, [d * math.sqrt(2.0 / 3.0), d])
+    assert mean == pytest.approx((d * math.sqrt(2.0 / 3.0) + d) / 2.0)
+    per_leg, mean = cross_track_spread([run1, run4], [reached[0], reached[3]], route, start)
+    assert np.all(np.isnan(per_leg)) and math.isnan(mean)  # a leg needs two runs that completed it
+
+
+# --- a tiny evaluation: 2 runs of 20 s, a random policy and the autopilot, on the CPU ----------------
+
+@pytest.fixture(scope="module")
+def tiny_evaluation(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("eval")
+    random_policy_file(folder / "random.pt")
+    policy = load_policy(folder / "random.pt")
+    evaluation = evaluate_mission(policy, runs=2, time_limit=20.0, device="cpu", progress=False, task=tiny_mission())
+    paths = evaluation.write(folder / "out")
+    return evaluation, paths
+
+
+def read_csv(path):
+    with open(path, newline="") as handle:
+        rows = list(csv.reader(handle))
+    return rows[0], [dict(zip(rows[0], row)) for row in rows[1:]]
+
+
+def test_tiny_evaluation_files(tiny_evaluation):
+    evaluation, paths = tiny_evaluation
+    with open(paths["trajectories.png"], "rb") as handle:
+        png = handle.read()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20_000
+    header, rows = read_csv(paths["results.csv"])
+    assert header == COLUMNS
+    assert [row["controller"] for row in rows] == ["policy", "autopilot"]
+    for row in rows:
+        assert int(row["runs"]) == 2
+        assert int(row["completed"]) == 0 and float(row["completion_rate"]) == 0.0  # 20 s: no mission done
+        assert math.isnan(float(row["time_mean_s"])) and math.isnan(float(row["cross_track_spread_m"]))
+        assert float(row["distance_mean_m"]) >= 0.0
+        assert float(row["tacks_mean"]) >= 0.0 and float(row["gybes_mean"]) >= 0.0
+        assert int(row["lost"]) == 0 and int(row["capsizes"]) + int(row["time_outs"]) == 2
+        assert 0.0 <= float(row["motor_use"]) <= 1.0
+    autopilot = rows[1]
+    assert 10.0 < float(autopilot["distance_mean_m"]) < 20.0 * 5.0  # under way, slower than 5 m/s
+    assert int(autopilot["time_outs"]) == 2
+    header, runs = read_csv(paths["runs.csv"])
+    assert len(runs) == 4 and [r["controller"] for r in runs] == ["policy"] * 2 + ["autopilot"] * 2
+    assert all(float(r["time_s"]) <= 20.0 and float(r["distance_m"]) > 0.0 for r in runs)
+    assert [r["own_tacks"] for r in runs[:2]] == ["", ""] and all(r["own_tacks"].isdigit() for r in runs[2:])
+    arrays = np.load(paths["trajectories.npz"])
+    assert list(arrays["controllers"]) == ["policy", "autopilot"]
+    assert arrays["autopilot_x"].shape == (2, 21) and arrays["autopilot_propeller"].shape == (2, 20)
+    np.testing.assert_array_equal(arrays["autopilot_length"], [20, 20])
+    # Printed table: a line per column, a column per controller.
+    table = evaluation.format_table().splitlines()
+    assert [line.split()[0] for line in table] == COLUMNS
+
+
+def test_tiny_evaluation_paths(tiny_evaluation):
+    """Both controllers sail the same runs: identical starts (position, heading, wind); every path runs from
+    its start to the end of its first episode, one sample per decision."""
+    evaluation, _ = tiny_evaluation
+    policy, autopilot = evaluation.results["policy"], evaluation.results["autopilot"]
+    for a, b in zip(policy.paths, autopilot.paths):
+        np.testing.assert_array_equal(a.xy[0], b.xy[0])
+        assert a.heading[0] == b.heading[0]
+        assert len(a.xy) == len(b.xy) == 21 and len(a.propeller) == 20
+        assert np.all(np.isfinite(a.xy)) and np.all(a.reached == 0)
+    np.testing.assert_array_equal(policy.wind_direction, autopilot.wind_direction)
+    starts = np.array([p.xy[0] for p in policy.paths])
+    assert np.all(np.abs(starts) <= 1.0 + 1e-6)  # the task's 1 m jitter around A
+    assert not np.array_equal(starts[0], starts[1])  # each run its own start
+    assert np.all(autopilot.distance_m > 10.0)
+
+
+def test_recorded_decision_is_env_step(device):
+    """The runner's decision launches what ``SailingEnv.step`` launches (same buffers and states, decision
+    after decision, through a time-out and the reset it causes) and keeps the pose from before that
+    reset."""
+    task = tiny_mission(episode_time=3.0)
+    stepped = SailingEnv(task, 3, device=device, seed=5)
+    recorded = SailingEnv(task, 3, device=device, seed=5)
+    decision = _RecordedDecision(recorded)
+    generator = torch.Generator().manual_seed(1)
+    for k in range(5):
+        actions = (2.0 * torch.rand(3, 3, generator=generator) - 1.0).to(stepped.torch_device)
+        stepped.step(actions)
+        recorded.buffers.actions.copy_(actions)
+        decision()
+        for name in ("policy_obs", "critic_obs", "final_policy_obs", "reward", "terminated", "time_out", "done",
+                     "episode_length", "target", "final_length", "final_status", "final_waypoints"):
+            torch.testing.assert_close(getattr(recorded.buffers, name), getattr(stepped.buffers, name), rtol=0, atol=0,
+                                       msg=f"{name} after decision {k}")
+        for name in ("position", "orientation", "velocity"):
+            np.testing.assert_array_equal(getattr(recorded.simulator.state, name).numpy(),
+                                          getattr(stepped.simulator.state, name).numpy())
+        before_reset = decision.position.numpy()
+        now = recorded.simulator.state.position.numpy()
+        if k == 2:  # every run timed out (3 s) and restarted near A: the recorded pose is from before
+            assert recorded.buffers.time_out.all()
+            assert np.all(np.linalg.norm(before_reset - now, axis=1) > 1.0)
+        else:
+            np.testing.assert_array_equal(before_reset, now)
+
+
+# --- the command line --------------------------------------------------------------------------------
+
+def test_cli_help(capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["eval", "--help"])
+    assert exit_info.value.code == 0
+    text = capsys.readouterr().out
+    assert "ocean-warp eval" in text
+    for option in ("--runs", "--sea-state", "--wind", "--seed", "--out", "--device", "--policy", "--no-autopilot",
+                   "--no-policy", "--time-limit"):
+        assert option in text
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--runs", "0"], "--runs must be >= 1"),
+    (["--sea-state", "-0.1"], "--sea-state must be"),
+    (["--wind", "-1"], "--wind must be"),
+    (["--wind", "nan"], "--wind must be"),
+    (["--time-limit", "0"], "--time-limit must be"),
+    (["--no-policy", "--no-autopilot"], "nothing to run"),
+    (["--device", "tpu"], "tpu"),
+])
+def test_cli_bad_options(argv, message, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_cli_unusable_policy(tmp_path, capsys):
+    """A missing, a corrupt and a foreign checkpoint: one line of error, no traceback, exit status 2."""
+    (tmp_path / "corrupt.pt").write_bytes(b"not a torch file")
+    torch.save({"weights": torch.zeros(3)}, tmp_path / "foreign.pt")
+    for name, message in (("missing.pt", "no such file"), ("corrupt.pt", "could not be read"),
+                          ("foreign.pt", "not an ocean_warp policy checkpoint")):
+        with pytest.raises(SystemExit) as exit_info:
+            main(["--policy", str(tmp_path / name), "--out", str(tmp_path / "out")])
+        assert exit_info.value.code == 2
+        err = capsys.readouterr().err
+        assert message in err and "Traceback" not in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_cli_runs_the_mission(tmp_path, capsys):
+    """The command end to end on the real mission (mesh hull), briefly: 1 run of 2 s per controller."""
+    random_policy_file(tmp_path / "random.pt")
+    code = main(["--policy", str(tmp_path / "random.pt"), "--runs", "1", "--time-limit", "2", "--out",
+                 str(tmp_path / "out"), "--no-progress", "--sea-state", "0.2", "--wind", "8", "--seed", "3"])
+    assert code == 0
+    out = capsys.readouterr().out
+    assert "completion_rate" in out and "wrote" in out
+    for name in ("results.csv", "runs.csv", "trajectories.npz", "trajectories.png"):
+        assert (tmp_path / "out" / name).is_file()
+    _, rows = read_csv(tmp_path / "out" / "runs.csv")
+    assert len(rows) == 2 and all(float(row["time_s"]) == 2.0 for row in rows)
+
+
+def test_mission_task_settings():
+    task = mission_task(sea_state=0.5, wind=7.0, seed=4, time_limit=60.0, observation="plus")
+    assert task.simulator.ocean.significant_wave_height == 0.5 and task.simulator.ocean.seed == 4
+    assert task.simulator.wind.speed == 7.0 and task.start.wind_speed == (7.0, 7.0)
+    assert task.episode_time == 60.0 and task.observation.value == "plus"
+    assert task.route == MissionConfig().route
+    with pytest.raises(ValueError, match="runs"):
+        evaluate_mission(None, runs=0)
+    with pytest.raises(ValueError, match="nothing to evaluate"):
+        evaluate_mission(None, runs=1, autopilot=False)
+
+
+def test_shipped_policy_path(monkeypatch):
+    assert policies.SHIPPED_POLICIES == {"EBoatMission-v0": "eboat_mission.pt", "EBoatWaypoint-v0": "eboat_waypoint.pt"}
+    with pytest.raises(ValueError, match="no policy is shipped"):
+        policies.shipped_policy_path("EBoatWaypointPlus-v0")
+    monkeypatch.setitem(policies.SHIPPED_POLICIES, "EBoatMission-v0", "not_there_yet.pt")
+    with pytest.raises(FileNotFoundError, match="not_there_yet.pt"):
+        policies.shipped_policy_path("ocean_warp/EBoatMission-v0")
+
+
+def test_benchmark_uses_the_runner(monkeypatch):
+    """benchmarks/autopilot_mission.py sails through ocean_warp.envs.evaluation (no loop of its own)."""
+    from benchmarks import autopilot_mission
+
+    calls = []
+
+    def spy(*args, **kwargs):
+        calls.append(kwargs)
+        return evaluate_mission(*args, **kwargs)
+
+    monkeypatch.setattr(autopilot_mission, "evaluate_mission", spy)
+    result = autopilot_mission.run_mission(2, time_limit=5.0, task=tiny_mission())
+    assert len(calls) == 1 and calls[0]["autopilot"] is True
+    assert set(result) == {"success", "time", "waypoints", "tacks", "status", "time_out"}
+    np.testing.assert_array_equal(result["time"], [5.0, 5.0])
+    np.testing.assert_array_equal(result["time_out"], [1.0, 1.0])

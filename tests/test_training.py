@@ -1,0 +1,232 @@
+"""``ocean-warp train``: learning, exact resumption, checkpoint errors, overrides, the curriculum, the CLI."""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import torch
+
+from ocean_warp.eboat import Hydrostatics
+from ocean_warp.eboat.simulator_config import still_water
+from ocean_warp.envs import RslRlVecEnv, SailingEnv, WaypointConfig
+from ocean_warp.envs.agents import CurriculumConfig, PpoConfig, TrainConfig, agent_config
+from ocean_warp.envs.policy_io import CheckpointError, build_actor, load_policy, read_checkpoint, save_checkpoint
+from ocean_warp.envs.training import _Curriculum, apply_overrides, main, train
+
+
+@pytest.fixture
+def one_torch_thread():
+    """Tiny networks train fastest on one thread; and one thread makes CPU training bit-reproducible."""
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    yield
+    torch.set_num_threads(threads)
+
+
+def quick_task(**changes) -> WaypointConfig:
+    """The seed task in still water (four-point hydrostatics), with ``changes``."""
+    base = WaypointConfig()
+    simulator = dataclasses.replace(base.simulator, ocean=still_water())
+    return dataclasses.replace(base, simulator=simulator, **changes)
+
+
+def easy_task() -> WaypointConfig:
+    """A waypoint 15 m dead ahead, a steady 4 m/s wind, a free propeller, 30 s episodes."""
+    base = quick_task()
+    return quick_task(episode_time=30.0, lost_margin=15.0,
+                      start=dataclasses.replace(base.start, waypoint_distance=(15.0, 15.0), wind_speed=(4.0, 4.0),
+                                                wind_direction_deg=(0.0, 0.0)),
+                      reward=dataclasses.replace(base.reward, propeller_gain=0.0, propeller_cost=0.0,
+                                                 progress_scale=15.0))
+
+
+def small_config(task, **changes) -> TrainConfig:
+    ppo = PpoConfig(hidden_dims=(32, 32), init_std=0.6, learning_rate=3e-3, gamma=0.95, entropy_coef=0.0,
+                    num_learning_epochs=4)
+    return dataclasses.replace(TrainConfig(task="EBoatWaypoint-v0", train_task=task, ppo=ppo), **changes)
+
+
+def rollout_return(policy, task, num_envs: int = 64, seed: int = 123) -> tuple[float, float]:
+    """Mean return per env over one episode length from a seeded reset, and the success rate of the
+    episodes that ended (deterministic policy)."""
+    env = RslRlVecEnv(SailingEnv(task, num_envs, device="cpu", seed=seed))
+    total = torch.zeros(num_envs)
+    successes = []
+    with torch.inference_mode():
+        for _ in range(env.max_episode_length):
+            _, rewards, _, extras = env.step(policy(env.env.buffers.policy_obs))
+            total += rewards
+            successes.append(extras["log"]["/episode/success_rate"])
+    return total.mean().item(), torch.cat(successes).mean().item()
+
+
+def test_training_raises_the_return_on_an_easy_waypoint(tmp_path, one_torch_thread):
+    config = small_config(easy_task(), steps_per_env=16, save_interval=100)
+    before = train(config, seed=0, num_envs=64, iterations=1, run_dir=str(tmp_path / "a"), progress=False)
+    after = train(config, seed=0, num_envs=64, iterations=16, run_dir=str(tmp_path / "b"), progress=False)
+    return_before, success_before = rollout_return(load_policy(before.policy), easy_task())
+    return_after, success_after = rollout_return(load_policy(after.policy), easy_task())
+    print(f"return {return_before:.3f} -> {return_after:.3f}, success {success_before:.2f} -> {success_after:.2f}")
+    # Reaching the waypoint is worth 1 (progress) + 1 (bonus): the trained fleet must get most of it.
+    assert return_after > return_before + 0.8
+    assert success_after > success_before + 0.3
+    rows = after.history
+    assert [row["iteration"] for row in rows] == list(range(16))
+    assert [row["samples"] for row in rows] == [64 * 16 * (k + 1) for k in range(16)]
+    assert (tmp_path / "b" / "progress.csv").read_text().count("\n") == 17
+    assert list((tmp_path / "b").glob("events.out.tfevents.*"))
+
+
+def test_resumed_training_matches_the_uninterrupted_run_bit_for_bit(tmp_path, one_torch_thread):
+    config = small_config(quick_task(episode_time=6.0), steps_per_env=4, save_interval=2)
+    straight = train(config, seed=3, num_envs=8, iterations=4, run_dir=str(tmp_path / "straight"), progress=False)
+    first = train(config, seed=3, num_envs=8, iterations=2, run_dir=str(tmp_path / "split"), progress=False)
+    assert first.checkpoint.endswith("model_1.pt")
+    resumed = train(config, seed=3, num_envs=8, iterations=2, resume=first.checkpoint, progress=False)
+    assert resumed.run_dir == first.run_dir and resumed.checkpoint.endswith("model_3.pt")
+    a, b = read_checkpoint(straight.checkpoint), read_checkpoint(resumed.checkpoint)
+    for key in ("actor_state_dict", "critic_state_dict"):
+        for name, tensor in a[key].items():
+            assert torch.equal(tensor, b[key][name]), f"{key}.{name}"
+    state_a, state_b = a["optimizer_state_dict"]["state"], b["optimizer_state_dict"]["state"]
+    for index in state_a:
+        for name in ("exp_avg", "exp_avg_sq"):
+            assert torch.equal(state_a[index][name], state_b[index][name])
+    assert a["optimizer_state_dict"]["param_groups"][0]["lr"] == b["optimizer_state_dict"]["param_groups"][0]["lr"]
+    returns_a = [row["mean_return"] for row in a["history"]]
+    returns_b = [row["mean_return"] for row in b["history"]]
+    np.testing.assert_array_equal(returns_a, returns_b)
+    # ... and the run did learn something: the weights moved from their initial values.
+    assert not torch.equal(a["actor_state_dict"]["mlp.0.weight"],
+                           read_checkpoint(first.checkpoint)["actor_state_dict"]["mlp.0.weight"])
+
+
+def _policy_checkpoint(path, **changes):
+    actor_config = PpoConfig(hidden_dims=(16,)).actor_config()
+    actor = build_actor(5, 3, actor_config)
+    data = {"task": "EBoatWaypoint-v0", "observation": "seed", "num_obs": 5, "num_actions": 3,
+            "actor_config": actor_config, "actor_state_dict": actor.state_dict()}
+    data.update(changes)
+    save_checkpoint(path, data)
+    return path
+
+
+def test_a_policy_checkpoint_round_trips(tmp_path):
+    path = _policy_checkpoint(tmp_path / "policy.pt")
+    policy = load_policy(path)
+    observations = torch.from_numpy(np.random.default_rng(5).uniform(-1, 1, (7, 5)).astype(np.float32))
+    actor = build_actor(5, 3, PpoConfig(hidden_dims=(16,)).actor_config())
+    actor.load_state_dict(read_checkpoint(path)["actor_state_dict"])
+    from tensordict import TensorDict
+
+    expected = actor(TensorDict({"policy": observations}, batch_size=[7]))
+    assert torch.equal(policy(observations), expected)
+    with pytest.raises(ValueError, match=r"shape \(N, 5\)"):
+        policy(torch.zeros(3, 4))
+    with pytest.raises(CheckpointError, match="for EBoatWaypoint-v0, not EBoatMission-v0"):
+        load_policy(path, task="EBoatMission-v0")
+
+
+def test_bad_checkpoints_give_clear_errors(tmp_path):
+    good = _policy_checkpoint(tmp_path / "good.pt")
+    data = good.read_bytes()
+    truncated = tmp_path / "truncated.pt"
+    truncated.write_bytes(data[: len(data) // 2])
+    with pytest.raises(CheckpointError, match="truncated.pt.*could not be read"):
+        load_policy(truncated)
+    with pytest.raises(CheckpointError, match="no such file"):
+        load_policy(tmp_path / "missing.pt")
+    foreign = tmp_path / "foreign.pt"
+    torch.save({"model": torch.zeros(3)}, foreign)
+    with pytest.raises(CheckpointError, match="not an ocean_warp policy checkpoint"):
+        load_policy(foreign)
+    code = tmp_path / "code.pt"
+    torch.save({"format": "ocean_warp.policy/1", "made": datetime.date(2026, 11, 23)}, code)  # not plain data
+    with pytest.raises(CheckpointError, match="could not be read"):
+        load_policy(code)
+    misfit = _policy_checkpoint(tmp_path / "misfit.pt", num_obs=15)
+    with pytest.raises(CheckpointError, match="do not fit"):
+        load_policy(misfit)
+    incomplete = tmp_path / "incomplete.pt"
+    save_checkpoint(incomplete, {"task": "EBoatWaypoint-v0"})
+    with pytest.raises(CheckpointError, match="lacks observation"):
+        load_policy(incomplete)
+    with pytest.raises(CheckpointError, match="exported policy, not a training checkpoint"):
+        train(agent_config("EBoatWaypoint-v0"), resume=str(good), progress=False)
+
+
+def test_train_command_reports_a_bad_resume_without_a_traceback(tmp_path, capsys):
+    bad = tmp_path / "bad.pt"
+    bad.write_bytes(b"not a checkpoint at all")
+    assert main(["--resume", str(bad), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert "could not be read" in err and "Traceback" not in err
+
+
+def test_overrides_reach_nested_fields_and_are_validated():
+    config = apply_overrides(agent_config("EBoatMission-v0"),
+                             ["ppo.learning_rate=3e-4", "steps_per_env=16", "train_task.decision_period=2.0",
+                              "ppo.hidden_dims=(32, 16)", "curriculum.sea_states=()"])
+    assert config.ppo.learning_rate == 3e-4 and config.steps_per_env == 16
+    assert config.train_task.decision_period == 2.0 and config.ppo.hidden_dims == (32, 16)
+    assert config.curriculum.sea_states == ()
+    with pytest.raises(ValueError, match="no field 'learning_rat'"):
+        apply_overrides(config, ["ppo.learning_rat=1"])
+    with pytest.raises(ValueError, match="learning_rate"):
+        apply_overrides(config, ["ppo.learning_rate=-1"])
+    with pytest.raises(ValueError, match="decision_period"):
+        apply_overrides(config, ["train_task.decision_period=0.07"])
+    with pytest.raises(ValueError, match="field=value"):
+        apply_overrides(config, ["ppo.learning_rate"])
+
+
+def test_curriculum_moves_up_on_success_and_draws_reproducible_seas():
+    curriculum = _Curriculum(CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0.8, window=3))
+    for rate in (0.9, 0.9, 0.5):  # mean 0.77 over the window: stays
+        curriculum.record(rate)
+    assert curriculum.level == 0
+    curriculum.record(0.96)  # window (0.9, 0.5, 0.96): 0.787, stays
+    assert curriculum.level == 0
+    curriculum.record(0.96)  # (0.5, 0.96, 0.96): 0.807, up
+    assert curriculum.level == 1 and curriculum.window == []
+    curriculum.record(float("nan"))  # an iteration in which no episode ended says nothing
+    assert curriculum.window == []
+    seas = [curriculum.sea_state(seed=4, iteration=k) for k in range(200)]
+    assert all(0.0 <= h <= 0.3 for h in seas) and np.std(seas) > 0.05
+    assert seas == [curriculum.sea_state(seed=4, iteration=k) for k in range(200)]
+    restored = _Curriculum(curriculum.config, curriculum.state())
+    assert restored.level == 1 and restored.window == curriculum.window
+    for _ in range(10):
+        curriculum.record(1.0)
+    assert curriculum.level == 2  # the top level is the last
+    fixed = _Curriculum(CurriculumConfig(sea_states=(0.2,), randomize=False))
+    assert fixed.sea_state(seed=0, iteration=7) == 0.2
+    assert _Curriculum(CurriculumConfig()).sea_state(seed=0, iteration=0) is None
+    with pytest.raises(ValueError, match="sea_states"):
+        CurriculumConfig(sea_states=(0.5, 0.1))
+
+
+def test_every_task_has_a_valid_agent_config():
+    from ocean_warp.envs import TASK_IDS
+
+    for task in TASK_IDS:
+        config = agent_config(task)
+        assert config.task == task and config.iterations >= 1
+    assert agent_config("EBoatMission-v0").train_task.route is None  # practice legs, drawn per episode
+    with pytest.raises(ValueError, match="unknown task"):
+        agent_config("EBoatNothing-v0")
+
+
+@pytest.mark.parametrize("job", ["train"])
+def test_cli_help(job):
+    result = subprocess.run([sys.executable, "-m", "ocean_warp.cli", job, "--help"], capture_output=True, text=True,
+                            timeout=120)
+    assert result.returncode == 0, result.stderr
+    for option in ("--task", "--device", "--num-envs", "--iterations", "--minutes", "--seed", "--run-name",
+                   "--resume"):
+        assert option in result.stdout
