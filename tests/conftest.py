@@ -8,6 +8,7 @@ import logging
 
 import numpy as np
 import pytest
+import torch
 import warp as wp
 
 wp.config.log_level = logging.WARNING  # no module-load chatter in test logs
@@ -47,3 +48,13 @@ def rng(request):
     seed = int(np.random.SeedSequence().generate_state(1)[0])
     print(f"rng seed for {request.node.name}: {seed}")
     return np.random.default_rng(seed)
+
+
+@pytest.fixture
+def one_torch_thread():
+    """Tiny networks train fastest on one thread, and two threads contend with Warp on a 2-core CI box;
+    one thread also makes CPU training bit-reproducible."""
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    yield
+    torch.set_num_threads(threads)

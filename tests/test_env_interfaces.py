@@ -41,14 +41,6 @@ def fast_config(**changes) -> WaypointConfig:
     return dataclasses.replace(base, simulator=simulator, **changes)
 
 
-@pytest.fixture
-def one_torch_thread():
-    """Tiny networks train fastest on one thread, and two threads contend with Warp on a 2-core CI box."""
-    threads = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(threads)
-
 
 # --- rsl-rl -------------------------------------------------------------------------------------------
 

@@ -30,14 +30,6 @@ NEVER_REACHED = WaypointConfig(episode_time=3.0)
 """3 decisions per episode, too few to sail 95 m: every episode times out unsuccessful."""
 
 
-@pytest.fixture
-def one_torch_thread():
-    """Tiny networks train fastest on one thread, and two threads contend with Warp on a 2-core CI box."""
-    threads = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(threads)
-
 
 def _mlp_layers(module: torch.nn.Module) -> list[tuple]:
     return [(type(layer).__name__, getattr(layer, "in_features", None), getattr(layer, "out_features", None))

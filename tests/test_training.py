@@ -11,21 +11,12 @@ import numpy as np
 import pytest
 import torch
 
-from ocean_warp.eboat import Hydrostatics
 from ocean_warp.eboat.simulator_config import still_water
 from ocean_warp.envs import RslRlVecEnv, SailingEnv, WaypointConfig
 from ocean_warp.envs.agents import CurriculumConfig, PpoConfig, TrainConfig, agent_config
 from ocean_warp.envs.policy_io import CheckpointError, build_actor, load_policy, read_checkpoint, save_checkpoint
 from ocean_warp.envs.training import _Curriculum, apply_overrides, main, train
 
-
-@pytest.fixture
-def one_torch_thread():
-    """Tiny networks train fastest on one thread; and one thread makes CPU training bit-reproducible."""
-    threads = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(threads)
 
 
 def quick_task(**changes) -> WaypointConfig:
