@@ -88,9 +88,12 @@ def _field_statistics(config: OceanConfig, seeds, device):
 
 
 def _peak_frequency(omega, energy, bin_width):
-    bins = np.floor(omega / bin_width).astype(int)
+    """Centre of the frequency bin holding the most energy. Bins are centred on multiples of
+    ``bin_width``: the tests' peaks are such multiples, so a peak sits mid-bin, not on an edge where
+    sampling noise alone would pick the bin on either side."""
+    bins = np.rint(omega / bin_width).astype(int)
     per_bin = np.bincount(bins.ravel(), weights=energy.ravel())
-    return (np.argmax(per_bin) + 0.5) * bin_width
+    return np.argmax(per_bin) * bin_width
 
 
 SEAS = {
@@ -114,7 +117,8 @@ def test_sea_statistics_match_spectrum(device, rng, sea):
     assert hs.mean() == pytest.approx(expected_hs, rel=0.05)
     assert np.abs(means).max() < 1e-4 * expected_hs
     bin_width = relative_bin * omega_peak
-    assert abs(_peak_frequency(omega, energy, bin_width) - omega_peak) <= bin_width
+    peak_bins_off = abs(_peak_frequency(omega, energy, bin_width) - omega_peak) / bin_width
+    assert round(peak_bins_off) <= 1, peak_bins_off  # the peak's bin or a neighbour
 
 
 def test_long_crested_sea_travels_one_way(device, rng):
