@@ -353,11 +353,17 @@ def _progress_bar(enabled: bool, total: int, task: str):
     return tqdm(total=total, desc=task, unit="it", dynamic_ncols=True, file=sys.stderr)
 
 
+def _episode_summary(row: dict[str, float]) -> str:
+    """Return and success of an iteration's ended episodes, or a note that none ended in it."""
+    if not math.isfinite(row.get("success_rate", math.nan)):
+        return "no episode ended"
+    return f"return {row['mean_return']:.2f}  success {100 * row['success_rate']:.0f}%"
+
+
 def _update_bar(bar, row: dict[str, float]) -> None:
     if bar is None:
         return
-    bar.set_postfix_str(f"return {row['mean_return']:.2f}  success {100 * row['success_rate']:.0f}%  "
-                        f"{row['decisions_per_s'] / 1e3:.1f}k dec/s  RTF {row['real_time_factor']:.0f}  "
+    bar.set_postfix_str(f"{_episode_summary(row)}  {row['decisions_per_s'] / 1e3:.1f}k dec/s  RTF {row['real_time_factor']:.0f}  "
                         f"Hs {row['sea_state_m']:.2f} m", refresh=False)
     bar.update(1)
 
@@ -431,8 +437,9 @@ def main(argv: list[str] | None = None) -> int:
     except (CheckpointError, ValueError) as error:
         print(f"ocean-warp train: {error}", file=sys.stderr)
         return 2
-    last = result.history[-1] if result.history else {}
-    print(f"{result.iterations} iterations in {result.wall_time:.0f} s; last: success "
-          f"{100 * last.get('success_rate', float('nan')):.0f}%, return {last.get('mean_return', float('nan')):.2f}")
+    ended = [row for row in result.history if math.isfinite(row.get("success_rate", math.nan))]
+    last = (f"last iteration with ended episodes ({ended[-1]['iteration']}): {_episode_summary(ended[-1])}"
+            if ended else "no episode ended")
+    print(f"{result.iterations} iterations in {result.wall_time:.0f} s; {last}")
     print(f"checkpoint {result.checkpoint}\npolicy     {result.policy}")
     return 0
