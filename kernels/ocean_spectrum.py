@@ -128,18 +128,24 @@ def _second_pair(pairs: wp.vec4f) -> wp.vec2f:
 
 @functools.cache
 def spectra_along_y_kernel(n: int):
-    """Pass 1, kernel ``(cells, time, spectra)``: cells (n, n) ``spectrum_cell`` x-major, time (1,)
-    float64 [s], spectra (n, n) ``packed_spectra`` x-major. One block per kx row: launch dim [n]."""
+    """Pass 1, kernel ``(cells, time, loop_period, spectra)``: cells (n, n) ``spectrum_cell`` x-major, time
+    (1,) float64 [s], loop_period float64 [s] (> 0: the time is taken modulo it, for a sea whose
+    frequencies are its multiples; 0: never), spectra (n, n) ``packed_spectra`` x-major. One block per
+    kx row: launch dim [n]."""
 
     @wp.kernel(enable_backward=False, module="unique")
     def spectra_along_y(
         cells: wp.array2d(dtype=spectrum_cell),
         time: wp.array(dtype=wp.float64),
+        loop_period: wp.float64,
         spectra: wp.array2d(dtype=packed_spectra),
     ):
         row = wp.tid()
+        t = time[0]
+        if loop_period > wp.float64(0.0):
+            t = t - wp.floor(t / loop_period) * loop_period
         cell_row = wp.tile_load(cells, shape=(1, n), offset=(row, 0))
-        amplitude = wp.tile_map(evolve_amplitude, cell_row, time[0])
+        amplitude = wp.tile_map(evolve_amplitude, cell_row, t)
         height = wp.tile_map(height_spectrum, cell_row, amplitude)
         wp.tile_ifft(height)
         displacement = wp.tile_map(displacement_spectrum, cell_row, amplitude)

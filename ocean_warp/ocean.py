@@ -104,13 +104,15 @@ class Ocean:
         self.surface.choppiness = self.config.choppiness
         self.surface.inversion_iterations = self.config.inversion_iterations if self.config.choppiness > 0 else 0
 
+        self._loop_period = wp.float64(self.config.loop_period or 0.0)
         self._along_y = spectra_along_y_kernel(n)
         self._along_x = fields_along_x_kernel(n)
         self.update(0.0)
 
     # --- evaluation -----------------------------------------------------------------------------
     def update(self, t: float | None = None) -> None:
-        """Evaluate all fields at time ``t`` [s] (None: at the time held in :attr:`time`).
+        """Evaluate all fields at time ``t`` [s] (None: at the time held in :attr:`time`). With
+        ``config.loop_period`` the fields repeat exactly: t is taken modulo the loop period.
 
         Asynchronous on CUDA. Inside a captured graph pass None and advance :attr:`time` with a
         kernel: a Python ``t`` would be frozen into the graph."""
@@ -120,8 +122,8 @@ class Ocean:
             self.time.fill_(float(t))
         n = self.config.resolution
         block_dim = self.fft_plan.block_dim
-        wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time], outputs=[self._spectra],
-                        block_dim=block_dim, device=self.device)
+        wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time, self._loop_period],
+                        outputs=[self._spectra], block_dim=block_dim, device=self.device)
         wp.launch_tiled(self._along_x, dim=[n], inputs=[self._spectra_quads], outputs=[self._field_rows],
                         block_dim=block_dim, device=self.device)
 

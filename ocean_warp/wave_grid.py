@@ -21,7 +21,7 @@ import numpy as np
 from . import spectra
 from .ocean_config import OceanConfig, Spectrum
 
-__all__ = ["RegularWave", "WaveGrid", "build_wave_grid", "CELL_LAYOUT"]
+__all__ = ["RegularWave", "WaveGrid", "build_wave_grid", "loop_frequencies", "CELL_LAYOUT"]
 
 CELL_LAYOUT = ("h0_re", "h0_im", "h0m_re", "h0m_im", "omega", "kx", "ky", "horizontal_gain")
 """Meaning of the 8 float32 values the spectrum kernel reads per cell: h0(k), conj(h0(-k)), omega [rad/s],
@@ -63,11 +63,27 @@ class WaveGrid:
     h0: np.ndarray
     """(n, n) complex128 initial amplitudes [m]."""
     omega: np.ndarray
-    """(n, n) angular frequency of each cell [rad/s]."""
+    """(n, n) angular frequency of each cell [rad/s], as the fields evolve with it: the dispersion
+    relation's, or with ``OceanConfig.loop_period`` its multiple of 2 pi / loop_period."""
     variance: float
     """Variance of the height field [m^2] that the spectrum puts on this grid: the expectation over
     seeds of the spatial variance (exact for "regular")."""
     regular_wave: RegularWave | None
+
+
+def loop_frequencies(omega, loop_period: float | None) -> np.ndarray:
+    """Angular frequencies [rad/s] that repeat every ``loop_period`` [s]: each ``omega`` [rad/s] moved to the
+    nearest whole multiple of 2 pi / loop_period, and to one multiple at least where omega > 0 (a wave
+    longer than 2 loop_period would otherwise stand still). omega = 0 (the mean) stays 0. None returns
+    ``omega`` unchanged. Each omega moves by at most pi / loop_period, a relative error of at most
+    T_w / (2 loop_period) for a wave of period T_w; only waves longer than 2 loop_period, raised to one
+    cycle per loop, move further."""
+    omega = np.asarray(omega, dtype=np.float64)
+    if loop_period is None:
+        return omega
+    quantum = 2.0 * math.pi / loop_period
+    multiples = np.maximum(np.rint(omega / quantum), 1.0)
+    return np.where(omega > 0.0, multiples * quantum, 0.0)
 
 
 def _wavevectors(config: OceanConfig) -> tuple[np.ndarray, np.ndarray]:
@@ -177,11 +193,18 @@ def _regular_h0(config: OceanConfig, kx, ky, excluded) -> tuple[np.ndarray, Regu
         )
     wavevector = (float(kx[iy, ix]), float(ky[iy, ix]))
     k_grid = math.hypot(*wavevector)
-    omega = float(spectra.dispersion_omega(k_grid, config.depth, config.gravity))
+    dispersion = float(spectra.dispersion_omega(k_grid, config.depth, config.gravity))
+    omega = float(loop_frequencies(dispersion, config.loop_period))
+    if abs(omega / dispersion - 1.0) > 0.01:
+        warnings.warn(
+            f"regular wave: period {2 * math.pi / omega:.4f} s instead of {2 * math.pi / dispersion:.4f} s, so that it "
+            f"repeats every OceanConfig.loop_period ({config.loop_period} s); a longer loop_period brings it closer",
+            stacklevel=3,
+        )
     direction_error = abs(math.remainder(math.atan2(wavevector[1], wavevector[0]) - config.direction, 2 * math.pi))
     if abs(k_grid / k_target - 1.0) > 0.01 or direction_error > math.radians(1.0):
         warnings.warn(
-            f"regular wave snapped to the grid: period {2 * math.pi / omega:.4f} s and direction "
+            f"regular wave snapped to the grid: period {2 * math.pi / dispersion:.4f} s and direction "
             f"{math.degrees(math.atan2(wavevector[1], wavevector[0])):.2f} deg instead of {config.period} s and "
             f"{math.degrees(config.direction):.2f} deg; make tile_size a multiple of the wavelength "
             f"({2 * math.pi / k_target:.3f} m) along x and y to avoid this",
@@ -203,8 +226,10 @@ def build_wave_grid(config: OceanConfig) -> WaveGrid:
         h0, regular_wave = _regular_h0(config, kx, ky, excluded)
         variance = 0.5 * config.amplitude**2
     else:
+        # The amplitudes follow the dispersion relation's omega; only the time evolution uses the loop's.
         h0, mean_square = _spectral_h0(config, kx, ky, omega, excluded)
         variance = 2.0 * float(mean_square.sum())  # each cell's pair h0(k), conj(h0(-k))
+    omega = loop_frequencies(omega, config.loop_period)
     # conj(h0(-k)): index -i of an FFT-ordered axis is (n - i) mod n.
     h0_mirror = np.conj(np.roll(np.flip(h0, axis=(0, 1)), shift=(1, 1), axis=(0, 1)))
     safe_k = np.where(k > 0.0, k, 1.0)

@@ -1,0 +1,27 @@
+"""USD export: record a simulation into a stage (ocean surface, boats with boom and rudder, route, wind),
+write a seamless loop of an ocean, check a stage with USD's validators and draw a preview PNG of it.
+
+Example::
+
+    from ocean_warp.usd import StageRecorder, record_eboat, render_preview, validate_stage
+
+    with StageRecorder.for_eboat("out/run.usdc", sim, fps=5.0, route=waypoints) as recorder:
+        for step in range(1200):
+            if step % 4 == 0:                      # dt 0.05 s: 5 frames per second of simulated time
+                record_eboat(recorder, sim)
+            sim.step()
+    assert validate_stage("out/run.usdc") == []
+    render_preview("out/run.usdc")                 # out/run.png
+
+Stages are Z up, 1 metre per unit, with timeCodesPerSecond = fps (time code = time [s] x fps). The prim
+layout is in :mod:`ocean_warp.usd.paths`. Importing this package imports ``pxr`` (usd-core).
+"""
+
+from .boat_prototype import BoatParts, eboat_parts
+from .ocean_mesh import OceanLattice
+from .preview import render_preview
+from .recorder import INSTANCING_THRESHOLD, StageRecorder, loop_path_for, record_eboat, write_ocean_loop
+from .validation import validate_stage
+
+__all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "validate_stage", "render_preview",
+           "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "loop_path_for"]

@@ -1,0 +1,137 @@
+"""The boats in a stage, in one of two layouts, both animated one frame at a time.
+
+- **One prim per boat** (:class:`PrimFleetWriter`): ``Boat_0000``... Xforms with a time-sampled translate
+  and orient (the pose), each holding ``Body``, ``Boom`` and ``Rudder`` that reference the prototype; the
+  boom's and the rudder's rotateZ are time-sampled. Good for a few dozen boats.
+- **Point instancers** (:class:`InstancedFleetWriter`): animation inside a PointInstancer's prototype
+  would be shared by every instance, so each moving part has its own instancer (``Bodies``, ``Booms``,
+  ``Rudders``) whose instances carry that part's world pose, composed here on the host from the boat's
+  pose and the part's pivot and angle. A few arrays per frame, however many boats.
+
+Quaternions on the way in are Warp's (x, y, z, w), body (FLU) -> world (ENU).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from pxr import Gf, Sdf, UsdGeom, Vt
+
+from .boat_prototype import BODY, BOOM, RUDDER, BoatParts
+from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, boat_path
+
+__all__ = ["PrimFleetWriter", "InstancedFleetWriter", "quaternion_multiply", "quaternion_rotate", "about_z"]
+
+INSTANCERS = {BODY: "Bodies", BOOM: "Booms", RUDDER: "Rudders"}
+"""Name of the instancer of each moving part."""
+
+
+def quaternion_multiply(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(N, 4) Hamilton products a b of (N, 4) quaternions (x, y, z, w): rotate by b, then by a."""
+    ax, ay, az, aw = np.moveaxis(a, -1, 0)
+    bx, by, bz, bw = np.moveaxis(b, -1, 0)
+    return np.stack([aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx,
+                     aw * bz + ax * by - ay * bx + az * bw,
+                     aw * bw - ax * bx - ay * by - az * bz], axis=-1)
+
+
+def quaternion_rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(N, 3) vectors v (N, 3) or (3,) rotated by unit quaternions q (N, 4) (x, y, z, w)."""
+    u, w = q[:, :3], q[:, 3:]
+    t = 2.0 * np.cross(u, np.broadcast_to(v, u.shape))
+    return v + w * t + np.cross(u, t)
+
+
+def about_z(angle: np.ndarray) -> np.ndarray:
+    """(N, 4) quaternions (x, y, z, w) of rotations by ``angle`` (N,) [rad] about z."""
+    half = 0.5 * np.asarray(angle, dtype=np.float64)
+    zeros = np.zeros_like(half)
+    return np.stack([zeros, zeros, np.sin(half), np.cos(half)], axis=-1)
+
+
+def _fleet_prim(stage, count: int):
+    fleet = UsdGeom.Xform.Define(stage, FLEET)
+    fleet.GetPrim().CreateAttribute(BOAT_COUNT_ATTRIBUTE, Sdf.ValueTypeNames.Int, custom=True).Set(int(count))
+    return fleet
+
+
+class PrimFleetWriter:
+    """One Xform per boat under :data:`~ocean_warp.usd.paths.FLEET`, referencing ``prototype`` (paths of the
+    Body, Boom and Rudder groups by name)."""
+
+    def __init__(self, stage, count: int, prototype: dict[str, str], parts: BoatParts):
+        _fleet_prim(stage, count)
+        self._pose, self._boom, self._rudder = [], [], []
+        for i in range(count):
+            boat = UsdGeom.Xform.Define(stage, boat_path(i))
+            self._pose.append((boat.AddTranslateOp(UsdGeom.XformOp.PrecisionDouble),
+                               boat.AddOrientOp(UsdGeom.XformOp.PrecisionFloat)))
+            body = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{BODY}")
+            body.GetPrim().GetReferences().AddInternalReference(prototype[BODY])
+            for name, pivot, ops in ((BOOM, parts.boom_pivot, self._boom), (RUDDER, parts.rudder_pivot, self._rudder)):
+                part = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{name}")
+                part.GetPrim().GetReferences().AddInternalReference(prototype[name])
+                part.AddTranslateOp().Set(Gf.Vec3d(*map(float, pivot)))
+                ops.append(part.AddRotateZOp())
+
+    def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles) -> None:
+        """One frame: positions (N, 3) [m], unit orientations (N, 4) (x, y, z, w), boom and rudder angles
+        (N,) [rad] (positive to port; each a rotation of minus the angle about the pivot's z, in degrees)."""
+        boom_degrees = 0.0 - np.degrees(boom_angles)
+        rudder_degrees = 0.0 - np.degrees(rudder_angles)
+        with Sdf.ChangeBlock():
+            for i, (translate, orient) in enumerate(self._pose):
+                x, y, z = map(float, positions[i])
+                qx, qy, qz, qw = map(float, orientations[i])
+                translate.Set(Gf.Vec3d(x, y, z), time_code)
+                orient.Set(Gf.Quatf(qw, qx, qy, qz), time_code)
+                self._boom[i].Set(float(boom_degrees[i]), time_code)
+                self._rudder[i].Set(float(rudder_degrees[i]), time_code)
+
+
+class InstancedFleetWriter:
+    """Three PointInstancers under :data:`~ocean_warp.usd.paths.FLEET` (``Bodies``, ``Booms``, ``Rudders``),
+    each with one prototype that references its group of ``prototype`` and one instance per boat."""
+
+    def __init__(self, stage, count: int, prototype: dict[str, str], parts: BoatParts):
+        _fleet_prim(stage, count)
+        self.parts = parts
+        self.count = count
+        self._attributes = {}
+        # Each instance's prototype lies within this distance [m] of its position: the instancer's extent.
+        self._radius = {name: float(np.linalg.norm(parts.group_points(name), axis=1).max()) for name in INSTANCERS}
+        for name, instancer_name in INSTANCERS.items():
+            path = f"{FLEET}/{instancer_name}"
+            instancer = UsdGeom.PointInstancer.Define(stage, path)
+            UsdGeom.Scope.Define(stage, f"{path}/Prototypes")
+            proto = UsdGeom.Xform.Define(stage, f"{path}/Prototypes/{name}")
+            proto.GetPrim().GetReferences().AddInternalReference(prototype[name])
+            instancer.CreatePrototypesRel().SetTargets([proto.GetPath()])
+            instancer.CreateProtoIndicesAttr(Vt.IntArray.FromNumpy(np.zeros(count, dtype=np.int32)))
+            self._attributes[name] = (instancer.CreatePositionsAttr(), instancer.CreateOrientationsfAttr(),
+                                      instancer.CreateExtentAttr())
+
+    def part_poses(self, positions, orientations, boom_angles, rudder_angles) -> dict[str, tuple]:
+        """World (positions (N, 3), orientations (N, 4) x y z w) of each part group: the body at the boat's
+        pose, boom and rudder at their pivots, turned by minus their angle about the pivot's z axis."""
+        poses = {BODY: (positions, orientations)}
+        for name, pivot, angle in ((BOOM, self.parts.boom_pivot, boom_angles),
+                                   (RUDDER, self.parts.rudder_pivot, rudder_angles)):
+            poses[name] = (positions + quaternion_rotate(orientations, pivot),
+                           quaternion_multiply(orientations, about_z(-np.asarray(angle, dtype=np.float64))))
+        return poses
+
+    def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles) -> None:
+        """One frame, the same arguments as :meth:`PrimFleetWriter.write`."""
+        poses = self.part_poses(positions, orientations, boom_angles, rudder_angles)
+        with Sdf.ChangeBlock():
+            for name, (where, rotation) in poses.items():
+                position_attr, orientation_attr, extent_attr = self._attributes[name]
+                where32 = where.astype(np.float32)
+                position_attr.Set(Vt.Vec3fArray.FromNumpy(where32), time_code)
+                orientation_attr.Set(Vt.QuatfArray.FromNumpy(rotation.astype(np.float32)), time_code)
+                if self.count:
+                    low = where32.min(axis=0) - self._radius[name]
+                    high = where32.max(axis=0) + self._radius[name]
+                    extent_attr.Set(Vt.Vec3fArray([Gf.Vec3f(*map(float, low)), Gf.Vec3f(*map(float, high))]),
+                                    time_code)

@@ -1,0 +1,224 @@
+"""A picture of a written stage, drawn with matplotlib on the CPU, for a person without a USD viewer.
+
+Everything is read back from the stage file (not from the simulation), so the picture shows what was
+written: the ocean mesh seen from above and coloured by height, each boat's parts as filled outlines
+(hull, keel, boom and sail, rudder, from both layouts: one prim per boat or point instancers), the
+waypoints and the path through them, and the wind's direction.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import PolyCollection
+from matplotlib.figure import Figure
+from pxr import Usd, UsdGeom
+
+from ..atomic_files import atomic_output
+from .paths import FLEET, OCEAN, ROUTE_PATH, WAYPOINTS, WIND, WIND_DIRECTION_ATTRIBUTE, WIND_SPEED_ATTRIBUTE
+
+__all__ = ["render_preview", "MAX_OUTLINED_BOATS"]
+
+MAX_OUTLINED_BOATS = 256
+"""Boats beyond this many are drawn as dots only (outlines cost time and are too small to see anyway)."""
+
+
+def _convex_hull(points: np.ndarray) -> np.ndarray:
+    """(K, 2) counter-clockwise convex hull of (P, 2) points (Andrew's monotone chain)."""
+    unique = np.unique(np.round(points, 6), axis=0)  # sorted by x, then y
+    if len(unique) < 3:
+        return unique
+
+    def half(sequence):
+        chain = []
+        for p in sequence:
+            while len(chain) >= 2 and ((chain[-1][0] - chain[-2][0]) * (p[1] - chain[-2][1])
+                                       - (chain[-1][1] - chain[-2][1]) * (p[0] - chain[-2][0])) <= 0.0:
+                chain.pop()
+            chain.append(p)
+        return chain[:-1]
+
+    return np.array(half(unique) + half(unique[::-1]))
+
+
+def _extreme_points(points: np.ndarray, directions: int = 200) -> np.ndarray:
+    """The points (P, 3) farthest along each of ``directions`` directions spread over the sphere: nearly
+    every vertex of their convex hull, so the outline of any projection of them is that of all points."""
+    i = np.arange(directions) + 0.5
+    polar, azimuth = np.arccos(1.0 - 2.0 * i / directions), math.pi * (1.0 + 5.0**0.5) * i
+    spread = np.stack([np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)], axis=1)
+    return points[np.unique(np.argmax(points @ spread.T, axis=0))]
+
+
+class _MeshPoints:
+    """Each mesh's points at a time code, reduced to :func:`_extreme_points`; meshes that take their points
+    from the same authored attribute (boats referencing one prototype) share one entry."""
+
+    def __init__(self, time_code):
+        self.time_code = time_code
+        self._cache = {}
+
+    def __call__(self, mesh: UsdGeom.Mesh) -> np.ndarray:
+        attribute = mesh.GetPointsAttr()
+        stack = attribute.GetPropertyStack(self.time_code)
+        key = str(attribute.GetPath())
+        if stack and not attribute.ValueMightBeTimeVarying():
+            key = (stack[0].layer.identifier, str(stack[0].path))
+        if key not in self._cache:
+            self._cache[key] = _extreme_points(np.array(attribute.Get(self.time_code), dtype=np.float64))
+        return self._cache[key]
+
+
+def _transform(points: np.ndarray, matrix) -> np.ndarray:
+    """Points (P, 3) through a Gf.Matrix4d (USD's row-vector convention: p' = p M)."""
+    m = np.array(matrix, dtype=np.float64).reshape(4, 4)
+    return points @ m[:3, :3] + m[3, :3]
+
+
+def _mesh_color(mesh: UsdGeom.Mesh, time_code) -> tuple:
+    primvar = UsdGeom.PrimvarsAPI(mesh).GetPrimvar("displayColor")
+    value = primvar.Get(time_code) if primvar else None
+    return tuple(value[0]) if value is not None and len(value) else (0.8, 0.8, 0.8)
+
+
+def _meshes_below(prim):
+    return [UsdGeom.Mesh(p) for p in Usd.PrimRange(prim) if p.IsA(UsdGeom.Mesh)]
+
+
+def _boat_shapes(stage, time_code, cache: UsdGeom.XformCache):
+    """(outlines [(K, 2) polygons], colours, boat centres (B, 2)) of every boat part in the world at
+    ``time_code``, from either layout."""
+    mesh_points = _MeshPoints(time_code)
+    fleet = stage.GetPrimAtPath(FLEET)
+    outlines, colors, centres = [], [], []
+    if not fleet:
+        return outlines, colors, np.zeros((0, 2))
+    for child in fleet.GetChildren():
+        if child.IsA(UsdGeom.PointInstancer):
+            instancer = UsdGeom.PointInstancer(child)
+            transforms = instancer.ComputeInstanceTransformsAtTime(time_code, time_code)
+            to_world = cache.GetLocalToWorldTransform(child)
+            positions = instancer.GetPositionsAttr().Get(time_code)
+            if child.GetName() == "Bodies" and positions is not None:
+                centres += [_transform(np.array(positions, dtype=np.float64), to_world)[:, :2]]
+            for target in instancer.GetPrototypesRel().GetTargets():
+                prototype = stage.GetPrimAtPath(target)
+                above = cache.GetLocalToWorldTransform(prototype.GetParent()).GetInverse()
+                for mesh in _meshes_below(prototype):
+                    local = _transform(mesh_points(mesh), cache.GetLocalToWorldTransform(mesh.GetPrim()) * above)
+                    color = _mesh_color(mesh, time_code)
+                    for transform in list(transforms)[:MAX_OUTLINED_BOATS]:
+                        outlines.append(_convex_hull(_transform(local, transform * to_world)[:, :2]))
+                        colors.append(color)
+        elif child.IsA(UsdGeom.Xformable):
+            centres.append(_transform(np.zeros((1, 3)), cache.GetLocalToWorldTransform(child))[:, :2])
+            if len(centres) > MAX_OUTLINED_BOATS:
+                continue
+            for mesh in _meshes_below(child):
+                world = _transform(mesh_points(mesh), cache.GetLocalToWorldTransform(mesh.GetPrim()))
+                outlines.append(_convex_hull(world[:, :2]))
+                colors.append(_mesh_color(mesh, time_code))
+    return outlines, colors, (np.concatenate(centres) if centres else np.zeros((0, 2)))
+
+
+def _draw_ocean(figure, axes, stage, time_code) -> bool:
+    mesh = UsdGeom.Mesh.Get(stage, OCEAN)
+    points = mesh.GetPointsAttr().Get(time_code) if mesh else None
+    if points is None or len(points) == 0:
+        return False
+    points = np.array(points, dtype=np.float64)
+    counts = np.array(mesh.GetFaceVertexCountsAttr().Get())
+    indices = np.array(mesh.GetFaceVertexIndicesAttr().Get())
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    triangles = np.array([(indices[s], indices[s + j], indices[s + j + 1])
+                          for s, c in zip(starts, counts) for j in range(1, c - 1)])
+    bound = max(float(np.abs(points[:, 2]).max()), 1e-3)
+    image = axes.tripcolor(points[:, 0], points[:, 1], triangles, points[:, 2], shading="gouraud", cmap="Blues_r",
+                           vmin=-1.2 * bound, vmax=1.2 * bound)
+    figure.colorbar(image, ax=axes, shrink=0.8, label="surface height [m]")
+    return True
+
+
+def _draw_route(axes, stage, cache) -> None:
+    waypoints = stage.GetPrimAtPath(WAYPOINTS)
+    if waypoints:
+        buoys = waypoints.GetChildren()
+        marks = np.array([_transform(np.zeros((1, 3)), cache.GetLocalToWorldTransform(p))[0, :2] for p in buoys])
+        if len(marks):
+            axes.scatter(marks[:, 0], marks[:, 1], s=60, marker="o", facecolor="orange", edgecolor="black",
+                         zorder=5, label="waypoints")
+            # A route may visit one buoy several times (BCDACA): one label per place, its names joined.
+            names_at: dict[tuple, list[str]] = {}
+            for prim, (x, y) in zip(buoys, marks):
+                names = names_at.setdefault((round(x, 1), round(y, 1)), [])
+                name = prim.GetDisplayName() or prim.GetName()
+                if name not in names:
+                    names.append(name)
+            for (x, y), names in names_at.items():
+                axes.annotate(",".join(names), (x, y), textcoords="offset points", xytext=(6, 6), fontsize=10,
+                              fontweight="bold", zorder=6)
+    path = UsdGeom.BasisCurves.Get(stage, ROUTE_PATH)
+    if path:
+        points = np.array(path.GetPointsAttr().Get(), dtype=np.float64)
+        axes.plot(points[:, 0], points[:, 1], "--", color="gold", lw=1.5, zorder=4, label="route")
+
+
+def _draw_wind(axes, stage) -> None:
+    wind = stage.GetPrimAtPath(WIND)
+    if not wind:
+        return
+    direction = wind.GetAttribute(WIND_DIRECTION_ATTRIBUTE).Get()
+    speed = wind.GetAttribute(WIND_SPEED_ATTRIBUTE).Get()
+    if direction is None:
+        return
+    centre, half = np.array([0.1, 0.9]), 0.06
+    tip = centre + half * np.array([math.cos(direction), math.sin(direction)])
+    tail = centre - half * np.array([math.cos(direction), math.sin(direction)])
+    axes.annotate("", xy=tuple(tip), xytext=tuple(tail), xycoords="axes fraction",
+                  arrowprops=dict(arrowstyle="-|>", color="red", lw=2.5), zorder=7)
+    axes.text(centre[0], centre[1] - 0.09, f"wind {speed:.1f} m/s", transform=axes.transAxes, ha="center",
+              color="red", fontsize=9, zorder=7)
+
+
+def render_preview(stage_path, png_path=None, *, time_code: float | None = None, dpi: int = 120) -> str:
+    """Draw the stage at ``stage_path`` at ``time_code`` (default: its first) from above and write the
+    picture to ``png_path`` (default: the stage's path with ``.png``), atomically; returns the PNG's path."""
+    stage_path = os.fspath(stage_path)
+    if not os.path.isfile(stage_path):
+        raise ValueError(f"render_preview: no stage at {stage_path!r}")
+    png_path = os.fspath(png_path) if png_path is not None else os.path.splitext(stage_path)[0] + ".png"
+    stage = Usd.Stage.Open(stage_path)
+    if stage is None:
+        raise ValueError(f"render_preview: USD cannot open {stage_path!r}")
+    code = stage.GetStartTimeCode() if time_code is None else float(time_code)
+    cache = UsdGeom.XformCache(code)
+
+    figure = Figure(figsize=(9, 8))
+    FigureCanvasAgg(figure)
+    axes = figure.add_subplot()
+    has_ocean = _draw_ocean(figure, axes, stage, code)
+    if not has_ocean:
+        axes.set_facecolor((0.75, 0.85, 0.95))
+    _draw_route(axes, stage, cache)
+    outlines, colors, centres = _boat_shapes(stage, code, cache)
+    if outlines:
+        axes.add_collection(PolyCollection(outlines, facecolors=colors, edgecolors="black", linewidths=0.4,
+                                           zorder=8))
+    if len(centres):
+        axes.scatter(centres[:, 0], centres[:, 1], s=4, color="crimson", zorder=7, label=f"{len(centres)} boats")
+    _draw_wind(axes, stage)
+    axes.set_aspect("equal")
+    axes.autoscale_view()
+    axes.set_xlabel("x (east) [m]")
+    axes.set_ylabel("y (north) [m]")
+    seconds = code / stage.GetTimeCodesPerSecond()
+    axes.set_title(f"{os.path.basename(stage_path)}: t = {seconds:.2f} s (time code {code:g})")
+    if axes.get_legend_handles_labels()[0]:
+        axes.legend(loc="lower right", fontsize=8)
+    with atomic_output(png_path, suffix=".png") as temporary:
+        figure.savefig(temporary, dpi=dpi)
+    del stage
+    return png_path

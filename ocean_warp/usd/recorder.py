@@ -1,0 +1,431 @@
+"""Record a simulation into a USD stage while it runs: the ocean surface, the boats with their boom and
+rudder, the route and the wind; and write one seamless loop of an ocean on its own.
+
+Example::
+
+    from ocean_warp.usd import StageRecorder, record_eboat
+
+    sim = EBoatSimulator(config, 16, device="cuda:0")
+    every = 4                                            # record every 4th step: 5 frames/s at dt 0.05 s
+    with StageRecorder.for_eboat("out/run.usdc", sim, fps=1 / (every * sim.config.dt),
+                                 route=waypoints, ocean_margin=30.0) as recorder:
+        for step in range(2400):
+            if step % every == 0:
+                record_eboat(recorder, sim)
+            sim.step()
+    # out/run.usdc appears only here, complete.
+
+Layout of the stage: ``ocean_warp.usd.paths``. Time code = time [s] x fps.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+from pxr import Sdf, Usd
+
+from ..eboat.eboat import EBoatConfig
+from ..ocean import Ocean
+from ..validation import require_finite, require_int_in_range, require_non_negative
+from .boat_prototype import define_boat_prototype, eboat_parts
+from .fleet import InstancedFleetWriter, PrimFleetWriter
+from .markers import define_route, define_wind_arrow
+from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, ocean_fields_at
+from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN
+from .stage_file import StageFile
+
+__all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "INSTANCING_THRESHOLD", "loop_path_for"]
+
+INSTANCING_THRESHOLD = 64
+"""Fleets larger than this are written as point instancers unless ``instanced`` says otherwise."""
+
+
+def loop_path_for(path) -> str:
+    """Where a recording at ``path`` puts its ocean loop (with ``ocean_loop=True``): ``<stem>_ocean_loop<ext>``
+    beside it."""
+    stem, extension = os.path.splitext(os.path.abspath(os.fspath(path)))
+    return f"{stem}_ocean_loop{extension}"
+
+
+def _color_range(ocean: Ocean) -> float:
+    """Half the height range [m] the ocean's colours span: 0.6 Hs of the sea on the grid, 5 cm at least."""
+    return max(0.6 * ocean.significant_wave_height, 0.05)
+
+
+def _loop_time_codes(loop_period: float, fps: float) -> np.ndarray:
+    """Time codes of one loop's frames, both ends included (the last equals the first): about ``fps`` frames
+    per second, at least 2 per loop."""
+    frames = max(2, round(loop_period * fps))
+    return np.arange(frames + 1) * (loop_period * fps / frames)
+
+
+def _write_loop_frames(stage, ocean: Ocean, lattice: OceanLattice, fps: float, *, normals: bool, colors: bool,
+                       time_codes: np.ndarray) -> None:
+    writer = OceanMeshWriter(stage, OCEAN, lattice, choppiness=ocean.config.choppiness, normals=normals,
+                             colors=colors, color_range=_color_range(ocean))
+    for code in time_codes:
+        writer.write(float(code), ocean_fields_at(ocean, float(code) / fps))
+
+
+def _require_loop(owner: str, ocean: Ocean) -> float:
+    if ocean.config.loop_period is None:
+        raise ValueError(f"{owner}: ocean_loop needs an ocean built with OceanConfig.loop_period set (its "
+                         "frequencies are then multiples of 2 pi / loop_period, so the sea repeats exactly)")
+    return ocean.config.loop_period
+
+
+def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, resolution: int = 128, extent=None,
+                     normals: bool = False, colors: bool = True, ascii: bool | None = None) -> str:
+    """Write one seamless loop of ``ocean`` (built with ``OceanConfig.loop_period`` T [s]) to ``path`` and
+    return the path. The stage holds the surface at time codes 0 ... T fps (about ``fps`` frames per
+    second, the last frame equal to the first), so a viewer that repeats the time range shows the sea
+    forever without a seam; time code c shows the ocean at time c / fps [s] (modulo T).
+
+    ``resolution``: at most this many vertices along either side of ``extent`` (xmin, xmax, ymin, ymax) [m]
+    (default: one tile, [0, tile_size]^2). ``normals``/``colors``: vertex normals and a displayColor by
+    height. The ocean's fields are left at the loop's last time; its clock is left as it was.
+
+    A frequency that is not a multiple of 2 pi / T cannot loop, so the loop period costs dispersion error:
+    each wave's frequency moves by at most pi / T (see ``OceanConfig.loop_period``)."""
+    owner = "write_ocean_loop"
+    if not isinstance(ocean, Ocean):
+        raise ValueError(f"{owner}: ocean must be an Ocean, got {type(ocean).__name__}")
+    period = _require_loop(owner, ocean)
+    resolution = require_int_in_range(owner, "resolution", resolution, 2, 4096)
+    tile = ocean.config.tile_size
+    extent = check_extent(owner, extent) if extent is not None else (0.0, tile, 0.0, tile)
+    stage_file = StageFile(path, fps=fps, ascii=ascii, owner=owner)
+    try:
+        stage = stage_file.stage
+        lattice = OceanLattice.covering(ocean.config, extent, resolution)
+        codes = _loop_time_codes(period, stage_file.fps)
+        _write_loop_frames(stage, ocean, lattice, stage_file.fps, normals=normals, colors=colors, time_codes=codes)
+        stage.SetStartTimeCode(0.0)
+        stage.SetEndTimeCode(float(codes[-1]))
+    except BaseException:
+        stage_file.abort()
+        raise
+    return stage_file.commit()
+
+
+def _finite_rows(owner: str, name: str, value, widths: tuple[int, ...]) -> np.ndarray:
+    """``value`` as a float64 array of one or more rows of one of ``widths`` finite numbers, else ValueError."""
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        array = np.zeros((0,))
+    if array.ndim != 2 or array.shape[1] not in widths or len(array) == 0 or not np.all(np.isfinite(array)):
+        raise ValueError(f"{owner}.{name} must be finite rows of {' or '.join(map(str, widths))} coordinates [m], "
+                         f"got {value!r}")
+    return array
+
+
+class StageRecorder:
+    """Writes a USD stage frame by frame while a simulation runs (call :meth:`record` every k-th step).
+
+    Arguments (keyword-only after ``path``):
+
+    - ``path``: the stage to write, ``.usdc`` (crate, default), ``.usda`` (text) or ``.usd`` (crate, or text
+      with ``ascii=True``). Nothing appears there until :meth:`close`; see ``ocean_warp.usd.stage_file``.
+    - ``fps``: frames per second of playback [1/s]; the stage's timeCodesPerSecond. Time code = t [s] x fps,
+      so recording every k-th step of dt plays in real time with fps = 1 / (k dt).
+    - ``ocean``: the :class:`Ocean` to draw (None: no ocean). Each frame evaluates it at the frame's time
+      (its clock is left as it was).
+    - ``ocean_resolution``: at most this many mesh vertices along either side of the ocean's extent; the
+      spacing is a whole number of the ocean's grid cells (the vertices are grid nodes). Each frame costs
+      12 bytes per vertex for the points, as much again for colours and for normals.
+    - ``ocean_extent``: (xmin, xmax, ymin, ymax) [m] of the ocean mesh (the patch is periodic and tiled to
+      cover it). None: the boats' positions at the first frame and the route, plus ``ocean_margin`` [m].
+    - ``ocean_normals``, ``ocean_colors``: vertex normals; a displayColor by height (deep blue to foam).
+    - ``ocean_loop``: write one seamless loop of the ocean (a sibling file, :func:`loop_path_for`) that the
+      stage repeats over the whole recording with value clips, instead of a mesh per frame. Needs an ocean
+      with ``OceanConfig.loop_period``; the boats, simulated on that same ocean, ride exactly the surface
+      shown. Worth it when the recording is much longer than the loop.
+    - ``boats``: number of boats (0: none); ``instanced``: one point instancer per moving part (True) or one
+      prim per boat (False); None picks instancers above :data:`INSTANCING_THRESHOLD` boats.
+    - ``boat``: the ``EBoatConfig`` whose dimensions the boats are drawn with (default V-C).
+    - ``route``: waypoints (R, 2) (or (R, 3)) [m], drawn as buoys and the path through them;
+      ``route_labels``: their R names (e.g. ``"BCDACA"``), the buoys' display names.
+    - ``wind_direction`` [rad, where it blows towards], ``wind_speed`` [m/s], ``wind_origin`` (3,) [m]: the
+      wind arrow (drawn when a direction is given; origin default: a corner of the ocean, 8 m up).
+    - ``ascii``: text instead of crate (see ``path``); ``save_every``: frames between saves of a crate file.
+
+    Use it as a context manager, or call :meth:`close` (success) or :meth:`abort` (failure): an exception
+    inside the ``with`` block deletes the temporary file and leaves the target path untouched.
+    """
+
+    def __init__(self, path, *, fps: float, ocean: Ocean | None = None, ocean_resolution: int = 64,
+                 ocean_extent=None, ocean_margin: float = 20.0, ocean_normals: bool = False, ocean_colors: bool = True,
+                 ocean_loop: bool = False, boats: int = 0, instanced: bool | None = None, boat=None, route=None,
+                 route_labels=None, wind_direction: float | None = None, wind_speed: float = 5.0, wind_origin=None,
+                 ascii: bool | None = None, save_every: int = 100):
+        owner = "StageRecorder"
+        if ocean is not None and not isinstance(ocean, Ocean):
+            raise ValueError(f"{owner}: ocean must be an Ocean or None, got {type(ocean).__name__}")
+        self.ocean = ocean
+        self.ocean_resolution = require_int_in_range(owner, "ocean_resolution", ocean_resolution, 2, 4096)
+        self._extent = check_extent(owner, ocean_extent) if ocean_extent is not None else None
+        self.ocean_margin = require_non_negative(owner, "ocean_margin", ocean_margin, unit=" [m]")
+        flags = (("ocean_normals", ocean_normals), ("ocean_colors", ocean_colors), ("ocean_loop", ocean_loop))
+        for name, flag in flags:
+            if not isinstance(flag, bool):
+                raise ValueError(f"{owner}.{name} must be True or False, got {flag!r}")
+        self.ocean_normals, self.ocean_colors, self.ocean_loop = ocean_normals, ocean_colors, ocean_loop
+        if ocean_loop:
+            if ocean is None:
+                raise ValueError(f"{owner}: ocean_loop=True needs an ocean")
+            _require_loop(owner, ocean)
+        self.boats = require_int_in_range(owner, "boats", boats, 0, 2**24)
+        if instanced is not None and not isinstance(instanced, bool):
+            raise ValueError(f"{owner}.instanced must be True, False or None, got {instanced!r}")
+        self.instanced = instanced if instanced is not None else self.boats > INSTANCING_THRESHOLD
+        if boat is not None and not isinstance(boat, EBoatConfig):
+            raise ValueError(f"{owner}.boat must be an EBoatConfig or None, got {type(boat).__name__}")
+        self.route = _finite_rows(owner, "route", route, (2, 3)) if route is not None else None
+        self.route_labels = None
+        if route_labels is not None:
+            if self.route is None or len(route_labels) != len(self.route):
+                raise ValueError(f"{owner}.route_labels must name each of the route's "
+                                 f"{0 if self.route is None else len(self.route)} waypoints, got {len(route_labels)}")
+            self.route_labels = [str(label) for label in route_labels]
+        self.wind = None
+        if wind_direction is not None:
+            self.wind = (require_finite(owner, "wind_direction", wind_direction),
+                         require_non_negative(owner, "wind_speed", wind_speed, unit=" [m/s]"))
+        self._wind_origin = _finite_rows(owner, "wind_origin", [wind_origin], (3,))[0] if wind_origin is not None \
+            else None
+        save_every = require_int_in_range(owner, "save_every", save_every, 1, 10**9)
+
+        self._file = StageFile(path, fps=fps, ascii=ascii, save_every=save_every, owner=owner)
+        self._loop_file: StageFile | None = None
+        self._loop_mesh_prim = None
+        try:
+            self.fps = self._file.fps
+            stage = self._file.stage
+            stage.CreateClassPrim(LIBRARY)
+            self._fleet = None
+            if self.boats:
+                parts = eboat_parts(boat)
+                prototype = define_boat_prototype(stage, BOAT_PROTOTYPE, parts)
+                layout = InstancedFleetWriter if self.instanced else PrimFleetWriter
+                self._fleet = layout(stage, self.boats, prototype, parts)
+            if self.route is not None:
+                define_route(stage, self.route, labels=self.route_labels)
+        except BaseException:
+            self._file.abort()
+            raise
+        self._ocean_writer: OceanMeshWriter | None = None
+        self.lattice: OceanLattice | None = None
+        self.first_time_code: float | None = None
+        self.last_time_code: float | None = None
+        self.frames = 0
+
+    # --- construction helpers -------------------------------------------------------------------
+    @classmethod
+    def for_eboat(cls, path, simulator, *, fps: float, **options) -> "StageRecorder":
+        """A recorder for an ``EBoatSimulator``: its ocean, boat count, boat dimensions and the mean wind of
+        its first environment, unless ``options`` say otherwise (any argument of the constructor)."""
+        options.setdefault("ocean", simulator.ocean)
+        options.setdefault("boats", simulator.count)
+        options.setdefault("boat", simulator.config.boat)
+        if "wind_direction" not in options:
+            options["wind_direction"] = float(simulator.state.wind_mean_direction.numpy()[0])
+            options.setdefault("wind_speed", float(simulator.state.wind_mean_speed.numpy()[0]))
+        return cls(path, fps=fps, **options)
+
+    @property
+    def path(self) -> str:
+        """Where the stage will be."""
+        return self._file.path
+
+    @property
+    def loop_path(self) -> str | None:
+        """Where the ocean loop will be (with ``ocean_loop``), else None."""
+        return loop_path_for(self.path) if self.ocean_loop else None
+
+    # --- recording ------------------------------------------------------------------------------
+    def time_code(self, time_s: float) -> float:
+        """The time code of time ``time_s`` [s]: time x fps, rounded to a whole frame when within 1e-6 of one."""
+        code = float(time_s) * self.fps
+        nearest = round(code)
+        return float(nearest) if abs(code - nearest) < 1e-6 else code
+
+    def record(self, time_s: float, positions=None, orientations=None, boom_angles=None, rudder_angles=None) -> None:
+        """Add the frame at time ``time_s`` [s] (later than the last one): the boats' positions (N, 3) [m],
+        orientations (N, 4) (x, y, z, w, body -> world; normalised here), boom and rudder angles (N,) [rad]
+        (positive to port; None: 0), and the ocean evaluated at ``time_s``. Boat arguments may be numpy
+        arrays, lists or torch tensors."""
+        owner = "StageRecorder.record"
+        if self._file.closed:
+            raise ValueError(f"{owner}: the recorder is closed")
+        if isinstance(time_s, bool) or not isinstance(time_s, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(time_s):
+            raise ValueError(f"{owner}: time_s must be a finite time in seconds, got {time_s!r}")
+        code = self.time_code(time_s)
+        if self.last_time_code is not None and code <= self.last_time_code:
+            raise ValueError(f"{owner}: time_s must increase from frame to frame, got {time_s!r} s (time code {code}) "
+                             f"after time code {self.last_time_code}")
+        boats = self._boat_frame(owner, positions, orientations, boom_angles, rudder_angles)
+        try:
+            if self.first_time_code is None:
+                self._start(boats[0] if boats is not None else None, code)
+            if self._ocean_writer is not None:
+                self._ocean_writer.write(code, ocean_fields_at(self.ocean, time_s))
+            if boats is not None:
+                self._fleet.write(code, *boats)
+            self._file.frame_written()
+        except BaseException:
+            self.abort()
+            raise
+        self.last_time_code = code
+        self.frames += 1
+
+    def _boat_frame(self, owner, positions, orientations, boom_angles, rudder_angles):
+        """The boat arguments as float64 arrays, checked; None without boats."""
+        n = self.boats
+        if n == 0:
+            if positions is not None and len(np.asarray(positions)):
+                raise ValueError(f"{owner}: positions given, but the recorder was made for 0 boats")
+            return None
+
+        def rows(name, value, width, default=None):
+            if value is None:
+                if default is None:
+                    raise ValueError(f"{owner}: {name} is required (the recorder has {n} boats)")
+                return np.full((n,) if width is None else (n, width), default, dtype=np.float64)
+            if hasattr(value, "detach"):
+                value = value.detach().cpu().numpy()
+            array = np.asarray(value, dtype=np.float64)
+            shape = (n,) if width is None else (n, width)
+            if array.shape != shape:
+                raise ValueError(f"{owner}: {name} must have shape {shape}, got {array.shape}")
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"{owner}: {name} holds NaN or infinite values")
+            return array
+
+        where = rows("positions", positions, 3)
+        rotation = rows("orientations", orientations, 4)
+        norm = np.linalg.norm(rotation, axis=1, keepdims=True)
+        if np.any(norm < 1e-6):
+            raise ValueError(f"{owner}: orientations must be non-zero quaternions (x, y, z, w)")
+        return (where, rotation / norm, rows("boom_angles", boom_angles, None, 0.0),
+                rows("rudder_angles", rudder_angles, None, 0.0))
+
+    def _start(self, positions: np.ndarray | None, code: float) -> None:
+        """At the first frame: fix the ocean's extent and lattice, and the wind arrow's place."""
+        self.first_time_code = code
+        stage = self._file.stage
+        extent = self._extent or self._default_extent(positions)
+        if self.wind is not None:
+            origin = self._wind_origin
+            if origin is None:
+                origin = (np.array([extent[0], extent[3], 8.0]) if extent is not None else np.array([0.0, 0.0, 8.0]))
+            define_wind_arrow(stage, self.wind[0], self.wind[1], origin)
+        if self.ocean is None:
+            return
+        self.lattice = OceanLattice.covering(self.ocean.config, extent, self.ocean_resolution)
+        if self.ocean_loop:
+            self._start_loop()
+            return
+        self._ocean_writer = OceanMeshWriter(stage, OCEAN, self.lattice, choppiness=self.ocean.config.choppiness,
+                                             normals=self.ocean_normals, colors=self.ocean_colors,
+                                             color_range=_color_range(self.ocean))
+
+    def _default_extent(self, positions: np.ndarray | None):
+        points = [p[:, :2] for p in (positions, self.route) if p is not None and len(p)]
+        if not points:
+            if self.ocean is None:
+                return None
+            tile = self.ocean.config.tile_size
+            return (0.0, tile, 0.0, tile)
+        xy = np.concatenate(points)
+        margin = max(self.ocean_margin, 1.0)
+        return (float(xy[:, 0].min() - margin), float(xy[:, 0].max() + margin),
+                float(xy[:, 1].min() - margin), float(xy[:, 1].max() + margin))
+
+    def _start_loop(self) -> None:
+        """Write the loop file now (the lattice is known); the clips that repeat it are authored at close."""
+        self._loop_file = StageFile(self.loop_path, fps=self.fps, ascii=self._file.format == "usda",
+                                    owner="StageRecorder")
+        codes = _loop_time_codes(self.ocean.config.loop_period, self.fps)
+        loop_stage = self._loop_file.stage
+        _write_loop_frames(loop_stage, self.ocean, self.lattice, self.fps, normals=self.ocean_normals,
+                           colors=self.ocean_colors, time_codes=codes)
+        loop_stage.SetStartTimeCode(0.0)
+        loop_stage.SetEndTimeCode(float(codes[-1]))
+        # The main stage's ocean: the static topology, with the animated attributes from the clips.
+        mesh = OceanMeshWriter(self._file.stage, OCEAN, self.lattice, choppiness=self.ocean.config.choppiness,
+                               normals=self.ocean_normals, colors=self.ocean_colors,
+                               color_range=_color_range(self.ocean)).mesh
+        self._loop_mesh_prim = mesh.GetPrim()
+
+    def _author_loop_clips(self) -> None:
+        """Value clips that map every stretch of loop_period on the stage to the loop's time codes."""
+        span = self.ocean.config.loop_period * self.fps
+        first = math.floor(self.first_time_code / span)
+        last = math.floor(self.last_time_code / span)
+        times = []
+        for k in range(first, last + 1):
+            times += [(k * span, 0.0), ((k + 1) * span, span)]
+        clips = Usd.ClipsAPI(self._loop_mesh_prim)
+        clips.SetClipAssetPaths([Sdf.AssetPath(f"./{os.path.basename(self.loop_path)}")])
+        clips.SetClipPrimPath(OCEAN)
+        clips.SetClipActive([(times[0][0], 0.0)])
+        clips.SetClipTimes(times)
+
+    # --- finishing ------------------------------------------------------------------------------
+    def close(self) -> str:
+        """Write the time range (and the loop's clips), save, and move the stage (and the loop) to their
+        paths; returns the stage's path. A recorder with no frame still writes a valid, empty stage."""
+        if self._file.closed:
+            raise ValueError("StageRecorder.close: the recorder is already closed")
+        try:
+            stage = self._file.stage
+            first = self.first_time_code if self.first_time_code is not None else 0.0
+            last = self.last_time_code if self.last_time_code is not None else first
+            stage.SetStartTimeCode(first)
+            stage.SetEndTimeCode(last)
+            if self._loop_file is not None:
+                # The loop first, at its final path, so that the clips find it when anything reads them.
+                self._loop_file.commit()
+                self._author_loop_clips()
+            self._ocean_writer = None
+            self._fleet = None
+            self._loop_mesh_prim = None
+            return self._file.commit()
+        except BaseException:
+            self.abort()
+            raise
+
+    def abort(self) -> None:
+        """Give up: delete the temporary file(s); nothing is written at the target paths."""
+        self._ocean_writer = None
+        self._fleet = None
+        self._loop_mesh_prim = None
+        if self._loop_file is not None and not self._loop_file.closed:
+            self._loop_file.abort()
+        if not self._file.closed:
+            self._file.abort()
+
+    @property
+    def closed(self) -> bool:
+        return self._file.closed
+
+    def __enter__(self) -> "StageRecorder":
+        return self
+
+    def __exit__(self, exc_type, exc, traceback) -> None:
+        if exc_type is not None:
+            self.abort()
+        elif not self.closed:
+            self.close()
+
+
+def record_eboat(recorder: StageRecorder, simulator, time_s: float | None = None) -> None:
+    """Add the current state of an ``EBoatSimulator`` to ``recorder`` as a frame at ``time_s`` [s] (default:
+    the simulator's time): positions, orientations, boom and rudder angles, one host copy of each."""
+    state = simulator.state
+    recorder.record(simulator.time if time_s is None else time_s, state.position.numpy(), state.orientation.numpy(),
+                    state.boom_angle.numpy(), state.rudder_angle.numpy())

@@ -1,0 +1,281 @@
+"""USD export: stages reopened with pxr and compared with the simulation that wrote them.
+
+Expected values come from the simulator's own state (copied to the host at each recorded step), from
+the ocean sampled independently (``Ocean.sample`` at a vertex's position, a fresh Ocean), from the data
+sheet's rig geometry and from the sailing rig's angle conventions, composed here with scipy rotations;
+not from the exporter.
+"""
+
+import math
+import os
+
+import numpy as np
+import pytest
+from pxr import Usd, UsdGeom
+from scipy.spatial.transform import Rotation
+
+import ocean_warp as ow
+from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat.sheet import BOOM_HEIGHT, HULL_LINK_HEIGHT, MAST_STEP
+from ocean_warp.usd import StageRecorder, record_eboat, render_preview, validate_stage, write_ocean_loop
+
+FPS = 5.0
+EVERY = 4  # record every 4th step of dt 0.05 s: 5 frames per second of simulated time
+BOOM_PIVOT = np.array([MAST_STEP[0], 0.0, BOOM_HEIGHT])
+RUDDER_PIVOT = np.array([-1.086, 0.0, HULL_LINK_HEIGHT + 0.076])  # sheet: rudder joint in the hull link frame
+INSTANCERS = {"Body": "Bodies", "Boom": "Booms", "Rudder": "Rudders"}
+
+
+def small_sea(**overrides) -> ow.OceanConfig:
+    return ow.OceanConfig(**{**dict(tile_size=64.0, resolution=32, significant_wave_height=0.4, peak_period=4.0,
+                                    choppiness=0.5, spreading=6.0), **overrides})
+
+
+def sail(device, path, *, instanced, steps=24, ocean=None, **options):
+    """Three E-Boats sailing with the rudder over in a small choppy sea, recorded every EVERY-th step;
+    returns the stage path and, per recorded step, the simulator's time and host state."""
+    config = EBoatSimulatorConfig(ocean=ocean or small_sea(), wind=ow.WindConfig(speed=6.0, direction=1.0))
+    sim = EBoatSimulator(config, 3, device=device)
+    sim.reset(position=[[0.0, 0.0, 0.05], [10.0, 5.0, 0.05], [-8.0, 12.0, 0.05]], heading=[0.0, 1.2, 2.5],
+              sheet=0.8)
+    sim.tensors.control.rudder[:] = sim.tensors.control.rudder.new_tensor([0.3, -0.4, 0.1])
+    truth = []
+    with StageRecorder.for_eboat(path, sim, fps=FPS, instanced=instanced, route=[[0, 0], [30, 10], [20, 40]],
+                                 **options) as recorder:
+        for step in range(steps):
+            if step % EVERY == 0:
+                record_eboat(recorder, sim)
+                state = sim.state
+                truth.append(dict(time=sim.time, position=state.position.numpy().copy(),
+                                  orientation=state.orientation.numpy().copy(),
+                                  boom=state.boom_angle.numpy().copy(), rudder=state.rudder_angle.numpy().copy()))
+            sim.step()
+    return str(path), truth, sim
+
+
+def part_transforms(stage, time_code, part):
+    """World matrices (numpy 4x4, row-vector convention) of every boat's ``part`` ("Body", "Boom", "Rudder"),
+    read with USD's own transform machinery from either layout."""
+    fleet = stage.GetPrimAtPath("/World/Fleet")
+    instancer = stage.GetPrimAtPath(f"/World/Fleet/{INSTANCERS[part]}")
+    if instancer:
+        matrices = UsdGeom.PointInstancer(instancer).ComputeInstanceTransformsAtTime(time_code, time_code)
+        return [np.array(m) for m in matrices]
+    cache = UsdGeom.XformCache(time_code)
+    boats = sorted((p for p in fleet.GetChildren() if p.GetName().startswith("Boat_")), key=lambda p: p.GetName())
+    return [np.array(cache.GetLocalToWorldTransform(b.GetChild(part))) for b in boats]
+
+
+def assert_rig_matches(stage, frame):
+    """Body, boom and rudder of every boat where the simulator had them: body at the boat's pose, boom and
+    rudder turning about their pivots with the sailing rig's conventions (boom and rudder chord along
+    (-cos a, sin a, 0) in the body frame)."""
+    code = frame["time"] * FPS
+    rotation = Rotation.from_quat(frame["orientation"])  # scipy and Warp: (x, y, z, w)
+    matrix = rotation.as_matrix()
+    bodies = part_transforms(stage, code, "Body")
+    assert len(bodies) == 3
+    for i, body in enumerate(bodies):
+        np.testing.assert_allclose(body[3, :3], frame["position"][i], atol=1e-4)
+        np.testing.assert_allclose(body[:3, :3].T, matrix[i], atol=1e-5)  # USD rows are the rotated axes
+    for part, pivot, angle in (("Boom", BOOM_PIVOT, frame["boom"]), ("Rudder", RUDDER_PIVOT, frame["rudder"])):
+        for i, world in enumerate(part_transforms(stage, code, part)):
+            np.testing.assert_allclose(world[3, :3], frame["position"][i] + matrix[i] @ pivot, atol=1e-4)
+            chord = np.array([-math.cos(angle[i]), math.sin(angle[i]), 0.0])
+            np.testing.assert_allclose(np.array([-1.0, 0.0, 0.0]) @ world[:3, :3], matrix[i] @ chord, atol=1e-5)
+
+
+@pytest.mark.parametrize("instanced", [False, True], ids=["prim_per_boat", "instanced"])
+def test_recorded_stage_matches_the_simulation(device, tmp_path, instanced):
+    path, truth, sim = sail(device, tmp_path / "run.usdc", instanced=instanced)
+    assert os.listdir(tmp_path) == ["run.usdc"]
+    stage = Usd.Stage.Open(path)
+    assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
+    assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
+    assert stage.GetTimeCodesPerSecond() == FPS
+    assert stage.GetStartTimeCode() == 0.0
+    assert stage.GetEndTimeCode() == pytest.approx(truth[-1]["time"] * FPS)
+    assert truth[-1]["time"] == pytest.approx((len(truth) - 1) * EVERY * 0.05)
+    assert stage.GetPrimAtPath("/World/Fleet").GetAttribute("oceanWarp:boatCount").Get() == 3
+    assert any(abs(b) > 0.05 for b in truth[-1]["boom"]), "the booms should have swung"
+    for frame in (truth[1], truth[-1]):
+        assert_rig_matches(stage, frame)
+    # The ocean's vertices lie on the surface that a fresh ocean of the same sea gives at that time.
+    ocean = ow.Ocean(sim.ocean.config, device=device)
+    mesh = UsdGeom.Mesh.Get(stage, "/World/Ocean")
+    for frame in (truth[0], truth[-1]):
+        points = np.array(mesh.GetPointsAttr().Get(frame["time"] * FPS), dtype=np.float64)
+        ocean.update(frame["time"])
+        chosen = np.linspace(0, len(points) - 1, 50).astype(int)
+        np.testing.assert_allclose(ocean.sample(points[chosen, :2]).height, points[chosen, 2], atol=2e-4)
+    # It covers the boats and the route with the default 20 m margin, and the sea really moves.
+    low, high = points[:, :2].min(axis=0), points[:, :2].max(axis=0)
+    assert np.all(low <= [-8.0 - 19.0, -19.0]) and np.all(high >= [30.0 + 19.0, 40.0 + 19.0])
+    assert np.ptp(points[:, 2]) > 0.1
+    assert validate_stage(path) == []
+
+
+def test_stage_validates_with_every_option(tmp_path):
+    config = small_sea(loop_period=8.0)
+    ocean = ow.Ocean(config, device="cpu")
+    path = tmp_path / "scene.usda"
+    with StageRecorder(path, fps=10.0, ocean=ocean, ocean_normals=True, boats=2, instanced=True,
+                       route=np.array([[0.0, 0.0], [15.0, 5.0]]), route_labels="AB", wind_direction=0.5,
+                       wind_speed=7.0) as recorder:
+        for k in range(3):
+            recorder.record(0.1 * k, [[0, 0, 0], [5, 5, 0]], [[0, 0, 0, 1]] * 2, [0.2, -0.3], [0.0, 0.1])
+    assert validate_stage(path) == []
+    text = path.read_text()
+    assert text.startswith("#usda")
+    stage = Usd.Stage.Open(str(path))
+    normals = np.array(UsdGeom.Mesh.Get(stage, "/World/Ocean").GetNormalsAttr().Get(1.0))
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-5)
+    assert normals[:, 2].min() > 0.5
+    buoys = stage.GetPrimAtPath("/World/Route/Waypoints").GetChildren()
+    assert [b.GetDisplayName() for b in buoys] == ["A", "B"]
+    # The prototype hull is the E-Boat's 2.5 m (data sheet, length overall) by 1.0 m.
+    hull = np.array(UsdGeom.Mesh.Get(stage, "/Library/EBoat/Body/Hull").GetPointsAttr().Get())
+    assert np.ptp(hull[:, 0]) == pytest.approx(2.5, abs=0.01) and np.ptp(hull[:, 1]) == pytest.approx(1.0, abs=0.01)
+
+
+def test_exception_while_recording_leaves_nothing(tmp_path):
+    target = tmp_path / "run.usdc"
+    target.write_bytes(b"the previous recording")
+    ocean = ow.Ocean(small_sea(), device="cpu")
+    with pytest.raises(RuntimeError, match="simulation blew up"):
+        with StageRecorder(target, fps=10.0, ocean=ocean, boats=2, save_every=1) as recorder:
+            for k in range(3):
+                recorder.record(0.1 * k, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+            raise RuntimeError("simulation blew up")
+    assert target.read_bytes() == b"the previous recording"
+    assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
+    # abort() without a context manager does the same, and a closed recorder takes no more frames.
+    recorder = StageRecorder(tmp_path / "other.usdc", fps=10.0, ocean=ocean)
+    recorder.record(0.0)
+    recorder.abort()
+    assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
+    with pytest.raises(ValueError, match="closed"):
+        recorder.record(1.0)
+
+
+def test_loop_period_makes_the_sea_repeat(device, rng):
+    period = float(rng.uniform(10.0, 40.0))
+    config = ow.OceanConfig(tile_size=100.0, resolution=32, significant_wave_height=1.0, peak_period=5.0,
+                            choppiness=0.7, loop_period=period, seed=int(rng.integers(2**31)))
+    ocean = ow.Ocean(config, device=device)
+    # Each frequency is a whole number of cycles per loop, within half a cycle of deep-water dispersion.
+    kx, ky = np.meshgrid(*(2 * [2 * math.pi * np.fft.fftfreq(32, d=100.0 / 32)]))
+    cycles = ocean.wave_grid.omega * period / (2 * math.pi)
+    np.testing.assert_allclose(cycles, np.rint(cycles), atol=1e-9)
+    true_cycles = np.sqrt(9.81 * np.hypot(kx, ky)) * period / (2 * math.pi)
+    assert np.all(np.abs(cycles - true_cycles)[true_cycles >= 0.5] <= 0.5 + 1e-9)
+    assert cycles[0, 0] == 0.0 and cycles[true_cycles > 0].min() >= 1.0
+    for t in rng.uniform(0.0, 5000.0, size=2):
+        ocean.update(float(t))
+        first = ocean.fields.numpy().copy()
+        ocean.update(float(t) + period)
+        np.testing.assert_allclose(ocean.fields.numpy(), first, atol=1e-5)
+        ocean.update(float(t) + 0.37 * period)
+        assert np.abs(ocean.fields.numpy() - first).max() > 0.1
+    # Exactly periodic, not just nearly: 50 000 loops later (float32 frequencies alone would drift by then).
+    ocean.update(float(t) + 50_000 * period)
+    np.testing.assert_allclose(ocean.fields.numpy(), first, atol=1e-5)
+
+
+def test_ocean_loop_stage_joins_its_ends(device, tmp_path):
+    ocean = ow.Ocean(small_sea(loop_period=6.0), device=device)
+    path = write_ocean_loop(tmp_path / "loop.usdc", ocean, fps=10.0, resolution=33)
+    stage = Usd.Stage.Open(path)
+    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode(), stage.GetTimeCodesPerSecond()) == (0.0, 60.0, 10.0)
+    points = UsdGeom.Mesh.Get(stage, "/World/Ocean").GetPointsAttr()
+    assert len(points.GetTimeSamples()) == 61
+    first, last = np.array(points.Get(0.0)), np.array(points.Get(60.0))
+    np.testing.assert_allclose(last, first, atol=1e-5)
+    assert len(first) == 33 * 33
+    middle = np.array(points.Get(23.0), dtype=np.float64)
+    assert np.abs(middle - first).max() > 0.05
+    fresh = ow.Ocean(ocean.config, device=device)
+    fresh.update(2.3)
+    np.testing.assert_allclose(fresh.sample(middle[::37, :2]).height, middle[::37, 2], atol=2e-4)
+    assert validate_stage(path) == []
+
+
+def test_recorded_ocean_loop_repeats_under_the_boats(device, tmp_path):
+    # A 4 s loop under 6 s of sailing: the stage shows the loop's frames through value clips, and they are
+    # the surface the boats were simulated on.
+    path, truth, sim = sail(device, tmp_path / "run.usdc", instanced=False, steps=121,
+                            ocean=small_sea(loop_period=4.0), ocean_loop=True)
+    assert sorted(os.listdir(tmp_path)) == ["run.usdc", "run_ocean_loop.usdc"]
+    stage = Usd.Stage.Open(path)
+    mesh = UsdGeom.Mesh.Get(stage, "/World/Ocean")
+    fresh = ow.Ocean(sim.ocean.config, device=device)
+    for code in (3.0, 23.0, 27.0):  # 0.6 s, 4.6 s (the second loop) and 5.4 s
+        points = np.array(mesh.GetPointsAttr().Get(code), dtype=np.float64)
+        fresh.update(code / FPS)
+        np.testing.assert_allclose(fresh.sample(points[::41, :2]).height, points[::41, 2], atol=2e-4)
+    np.testing.assert_allclose(np.array(mesh.GetPointsAttr().Get(23.0)), np.array(mesh.GetPointsAttr().Get(3.0)),
+                               atol=1e-5)
+    assert_rig_matches(stage, truth[-1])
+    assert validate_stage(path) == []
+
+
+@pytest.mark.parametrize("resolution,xs,ys", [
+    (64, np.arange(-6.0, 15.0, 2.0), [0.0, 2.0, 4.0]),  # 2 m cells: every node from x -6 to 14, y 0 to 4
+    (4, [-6.0, 2.0, 10.0, 18.0], [0.0, 8.0]),  # every 4th node: 4 vertices reach past x = 13
+    (2, [-6.0, 14.0], [0.0, 20.0]),
+])
+def test_ocean_lattice_covers_its_extent_on_grid_nodes(resolution, xs, ys):
+    from ocean_warp.usd import OceanLattice
+
+    lattice = OceanLattice.covering(small_sea(), (-5.0, 13.0, 1.0, 3.0), resolution)
+    np.testing.assert_allclose(lattice.ix * 2.0, xs)
+    np.testing.assert_allclose(lattice.iy * 2.0, ys)
+    assert lattice.vertex_count == len(xs) * len(ys)
+
+
+@pytest.mark.parametrize("arguments,name", [
+    (dict(fps=0.0), "fps"),
+    (dict(fps=10.0, ocean_resolution=1), "ocean_resolution"),
+    (dict(fps=10.0, ocean_extent=(0.0, -5.0, 0.0, 10.0)), "ocean_extent"),
+    (dict(fps=10.0, boats=-2), "boats"),
+    (dict(fps=10.0, route=[1.0, 2.0]), "route"),
+    (dict(fps=10.0, route=[[0.0, 0.0], [1.0, 2.0]], route_labels="ABC"), "route_labels"),
+    (dict(fps=10.0, instanced="yes"), "instanced"),
+    (dict(fps=10.0, ascii=True), "ascii"),
+    (dict(fps=10.0, wind_direction=math.nan), "wind_direction"),
+    (dict(fps=10.0, ocean="sea"), "ocean"),
+    (dict(fps=10.0, ocean_loop=True, ocean=ow.Ocean(small_sea(), device="cpu")), "ocean_loop"),
+])
+def test_bad_argument_is_refused_by_name(tmp_path, arguments, name):
+    with pytest.raises(ValueError, match=name):
+        StageRecorder(tmp_path / "run.usdc", **arguments)
+    assert os.listdir(tmp_path) == []
+
+
+def test_bad_frame_is_refused_by_name(tmp_path):
+    with pytest.raises(ValueError, match="path must end in"):
+        StageRecorder(tmp_path / "run.txt", fps=10.0)
+    with StageRecorder(tmp_path / "run.usdc", fps=10.0, boats=2) as recorder:
+        with pytest.raises(ValueError, match="positions must have shape"):
+            recorder.record(0.0, np.zeros((3, 3)), [[0, 0, 0, 1]] * 2)
+        with pytest.raises(ValueError, match="orientations"):
+            recorder.record(0.0, np.zeros((2, 3)), np.zeros((2, 4)))
+        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+        with pytest.raises(ValueError, match="time_s must increase"):
+            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+    with pytest.raises(ValueError, match="loop_period"):
+        write_ocean_loop(tmp_path / "loop.usdc", ow.Ocean(small_sea(), device="cpu"))
+    assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
+
+
+def test_preview_png_is_written(tmp_path):
+    ocean = ow.Ocean(small_sea(), device="cpu")
+    stage = tmp_path / "run.usdc"
+    with StageRecorder(stage, fps=10.0, ocean=ocean, boats=2, route=[[0, 0], [20, 10]], wind_direction=2.0) as rec:
+        rec.record(0.0, [[0, 0, 0], [8, 3, 0]], [[0, 0, 0, 1], [0, 0, 0.38268343, 0.92387953]], [0.5, -0.5])
+    png = render_preview(stage)
+    assert png == str(tmp_path / "run.png")
+    with open(png, "rb") as handle:
+        assert handle.read(8) == b"\x89PNG\r\n\x1a\n"
+    assert os.path.getsize(png) > 20_000
+    assert sorted(os.listdir(tmp_path)) == ["run.png", "run.usdc"]
