@@ -53,7 +53,7 @@ import logging
 import math
 import os
 import sys
-from typing import Protocol
+from typing import Callable, Protocol
 
 import numpy as np
 import torch
@@ -69,10 +69,10 @@ from .core import SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
 from .policy_io import CheckpointError, Policy, load_policy
-from .tasks import MISSION_WAYPOINTS, MissionConfig, ObservationSet, TaskConfig
+from .tasks import MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
-__all__ = ["Controller", "PolicyController", "AutopilotController", "RunPath", "ControllerResult",
-           "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "mission_task", "sail_mission", "evaluate_mission",
+__all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
+           "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "mission_task", "sail_mission", "evaluate_mission",
            "main"]
 
 TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
@@ -201,6 +201,17 @@ class ControllerResult:
     def runs(self) -> int:
         return len(self.paths)
 
+    def subset(self, runs: np.ndarray, name: str) -> ControllerResult:
+        """The result of only the ``runs`` (indices or an (N,) bool mask), named ``name``; its metrics are
+        recomputed over them (e.g. one controller's boats of a :class:`FleetController`)."""
+        index = np.flatnonzero(runs) if np.asarray(runs).dtype == bool else np.asarray(runs, dtype=np.int64)
+        pick = (lambda values: None if values is None else values[index])  # noqa: E731
+        return ControllerResult(name=name, paths=[self.paths[i] for i in index], success=self.success[index],
+                                time_s=self.time_s[index], waypoints=self.waypoints[index], status=self.status[index],
+                                time_out=self.time_out[index], wind_direction=self.wind_direction[index],
+                                route=self.route, start_point=self.start_point, own_tacks=pick(self.own_tacks),
+                                own_gybes=pick(self.own_gybes))
+
     @property
     def capsized(self) -> np.ndarray:
         return (self.status & BoatStatus.CAPSIZED) != 0
@@ -245,25 +256,91 @@ class ControllerResult:
         return rows
 
 
-class _RecordedDecision:
+class FleetController:
+    """Several controllers in one fleet: ``groups`` pairs each controller with the runs it steers, (N,)
+    bool masks that together cover every run once. Each controller acts on the whole fleet, and each
+    run keeps the actions of its own controller (a few wasted actions, no per-group environments)."""
+
+    def __init__(self, groups: list[tuple[Controller, np.ndarray]], name: str = "fleet"):
+        if not groups:
+            raise ValueError("FleetController: no controllers")
+        masks = [np.asarray(mask, dtype=bool) for _, mask in groups]
+        if len({mask.shape for mask in masks}) != 1 or masks[0].ndim != 1:
+            raise ValueError("FleetController: the masks must all be (N,) of the same N")
+        coverage = np.sum(masks, axis=0)
+        if not (coverage == 1).all():
+            raise ValueError(f"FleetController: every run needs exactly one controller; runs "
+                             f"{np.flatnonzero(coverage != 1).tolist()} have {sorted(set(coverage[coverage != 1]))}")
+        self.groups = [(controller, mask) for (controller, _), mask in zip(groups, masks)]
+        self.name = name
+        self._masks: list = []
+        self._actions = None
+
+    def reset(self, env: SailingEnv) -> None:
+        if self.groups[0][1].shape[0] != env.num_envs:
+            raise ValueError(f"FleetController: masks for {self.groups[0][1].shape[0]} runs, the environment has "
+                             f"{env.num_envs}")
+        for controller, _ in self.groups:
+            controller.reset(env)
+        self._masks = [torch.as_tensor(mask, device=env.torch_device).unsqueeze(1) for _, mask in self.groups]
+        self._actions = torch.zeros_like(env.buffers.actions)
+
+    def act(self, env: SailingEnv) -> None:
+        actions = env.buffers.actions
+        for (controller, _), mask in zip(self.groups, self._masks):
+            controller.act(env)
+            torch.where(mask, actions, self._actions, out=self._actions)
+        actions.copy_(self._actions)
+
+
+class RecordedDecision:
     """One decision of ``env``, launched as ``SailingEnv.step`` launches it (and, on CUDA, captured as one
     graph likewise), with each boat's pose copied out after the physics and before the task's kernels
     restart the runs that ended: ``env.step()`` keeps no pose from before that reset, and the last
     decision of a run is where it reached its last waypoint, capsized or was lost. A test checks that it
-    stays step for step the same as ``env.step()``."""
+    stays step for step the same as ``env.step()``.
 
-    def __init__(self, env: SailingEnv):
+    With ``frames_per_decision`` F > 1 it also keeps F evenly spaced frames inside the decision (after
+    steps S/F, 2 S/F, ..., S of its S physics steps; F must divide S): pose, boom and rudder angles of
+    every boat, for a recorder that wants more than one frame a second. The copies are part of the
+    launch sequence (graph-safe: fixed slots, no host work)."""
+
+    def __init__(self, env: SailingEnv, frames_per_decision: int = 1):
+        steps = env.steps_per_decision
+        if isinstance(frames_per_decision, bool) or not isinstance(frames_per_decision, int) \
+                or not 1 <= frames_per_decision <= steps or steps % frames_per_decision:
+            raise ValueError(f"RecordedDecision: frames_per_decision must divide the {steps} physics steps of a "
+                             f"decision, got {frames_per_decision!r}")
         self.env = env
-        self.position = wp.zeros(env.num_envs, dtype=wp.vec3, device=env.device)
+        self.frames_per_decision = frames_per_decision
+        n, device = env.num_envs, env.device
+        self.position = wp.zeros(n, dtype=wp.vec3, device=device)
         """(N,) world position after the last decision's physics [m]."""
-        self.orientation = wp.zeros(env.num_envs, dtype=wp.quat, device=env.device)
+        self.orientation = wp.zeros(n, dtype=wp.quat, device=device)
+        """(N,) orientation (x, y, z, w) after the last decision's physics."""
+        frames = frames_per_decision * n
+        self.frame_position = wp.zeros(frames, dtype=wp.vec3, device=device)
+        """(F * N,) positions [m] at the decision's frames, frame-major."""
+        self.frame_orientation = wp.zeros(frames, dtype=wp.quat, device=device)
+        self.frame_boom_angle = wp.zeros(frames, dtype=wp.float32, device=device)
+        """(F * N,) boom angles [rad], positive to port."""
+        self.frame_rudder_angle = wp.zeros(frames, dtype=wp.float32, device=device)
+        """(F * N,) rudder angles [rad], positive turns to port."""
         self._graph = None
 
     def _launch(self) -> None:
         env, state = self.env, self.env.simulator.state
+        n, every = env.num_envs, env.steps_per_decision // self.frames_per_decision
         env.launch_actions()
-        for _ in range(env.steps_per_decision):
+        for step in range(env.steps_per_decision):
             env.simulator.launch_step()
+            if (step + 1) % every == 0:
+                offset = ((step + 1) // every - 1) * n
+                for source, target in ((state.position, self.frame_position),
+                                       (state.orientation, self.frame_orientation),
+                                       (state.boom_angle, self.frame_boom_angle),
+                                       (state.rudder_angle, self.frame_rudder_angle)):
+                    wp.copy(target, source, dest_offset=offset, count=n)
         wp.copy(self.position, state.position)
         wp.copy(self.orientation, state.orientation)
         env.launch_task()
@@ -280,6 +357,15 @@ class _RecordedDecision:
                 self._graph = capture.graph
             wp.capture_launch(self._graph)
 
+    def frames(self) -> dict[str, np.ndarray]:
+        """The last decision's frames on the host: "position" (F, N, 3) [m], "orientation" (F, N, 4) xyzw,
+        "boom_angle" and "rudder_angle" (F, N) [rad]."""
+        f, n = self.frames_per_decision, self.env.num_envs
+        return {"position": self.frame_position.numpy().reshape(f, n, 3),
+                "orientation": self.frame_orientation.numpy().reshape(f, n, 4),
+                "boom_angle": self.frame_boom_angle.numpy().reshape(f, n),
+                "rudder_angle": self.frame_rudder_angle.numpy().reshape(f, n)}
+
 
 def _propeller_levels(actions: np.ndarray) -> np.ndarray:
     """int(5 a0) truncated toward zero, as the environment applies it (0 for a non-finite action)."""
@@ -287,14 +373,19 @@ def _propeller_levels(actions: np.ndarray) -> np.ndarray:
     return np.trunc(5.0 * np.clip(a0, -1.0, 1.0)).astype(np.int64)
 
 
-def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = False) -> ControllerResult:
+def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = False, frames_per_decision: int = 1,
+                 on_decision: Callable[[int, RecordedDecision], None] | None = None) -> ControllerResult:
     """Restart ``env`` from its seed (``env.reset(seed=env.seed)``: the same starts, waves and gusts every
-    time) and let ``controller`` sail every run until its first episode ends; record the paths."""
+    time) and let ``controller`` sail every run until its first episode ends; record the paths.
+
+    ``on_decision(k, decision)``, if given, is called after decision k (0, 1, ...) with the
+    :class:`RecordedDecision`, whose ``frames()`` hold ``frames_per_decision`` frames of every boat
+    from inside it (e.g. for a USD recorder); runs that already ended keep sailing new episodes there."""
     if env.task.route is None:
         raise ValueError("sail_mission: the task has no fixed route (a mission task is needed)")
     env.reset(seed=env.seed)
     controller.reset(env)
-    decision = _RecordedDecision(env)
+    decision = RecordedDecision(env, frames_per_decision)
     n, limit = env.num_envs, env.max_episode_length
     state = env.simulator.state
     origin = env.origin.numpy()[:, :2].astype(np.float64)
@@ -319,6 +410,8 @@ def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = Fa
         for k in range(limit):
             controller.act(env)
             decision()
+            if on_decision is not None:
+                on_decision(k, decision)
             active = ~finished
             levels[k, active] = _propeller_levels(env.actions.numpy())[active]
             xy[k + 1, active] = decision.position.numpy()[active, :2] - origin[active]
@@ -449,9 +542,8 @@ def _waypoint_names(route, start) -> dict[str, tuple[float, float]]:
     """Each distinct point of the route (and the start) named as in MISSION_WAYPOINTS, else by number."""
     names = {}
     for k, point in enumerate([tuple(start), *route]):
-        known = [name for name, where in MISSION_WAYPOINTS.items() if math.dist(where, point) < 1e-3]
         if not any(math.dist(where, point) < 1e-3 for where in names.values()):
-            names[known[0] if known else f"W{k}"] = tuple(float(v) for v in point)
+            names[mission_waypoint_name(point) or f"W{k}"] = tuple(float(v) for v in point)
     return names
 
 

@@ -55,7 +55,9 @@ def plot_trajectories(panels: Sequence[PanelData], path: str | os.PathLike, *, w
     low, high = low - pad, high + pad
     high[1] += 0.12 * (high[1] - low[1])  # room for the wind arrow at the top
 
-    width = 6.0 * len(panels)
+    # Panels as wide as the course is (equal axes), so a tall course does not leave blank margins.
+    aspect = float(high[0] - low[0]) / float(high[1] - low[1])
+    width = len(panels) * min(max(5.2 * aspect + 1.0, 3.5), 9.0)
     fig, axes = plt.subplots(1, len(panels), figsize=(width, 6.0), sharex=True, sharey=True, squeeze=False)
     colours = plt.get_cmap("tab20")
     for ax, panel in zip(axes[0], panels):

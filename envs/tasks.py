@@ -24,12 +24,20 @@ from ocean_warp.validation import require_choice, require_in_range, require_non_
 from ocean_warp.wind import WindConfig
 
 __all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_sea", "waypoint_plus_sea"]
+           "MissionConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name", "mission_sea", "waypoint_plus_sea"]
 
 MISSION_WAYPOINTS = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}
 """The seed paper's waypoints [m]: a 100 m square turned 45 degrees."""
 BCDACA_ROUTE = tuple(MISSION_WAYPOINTS[name] for name in "BCDACA")
 """The six legs of the mission, in order, starting from A."""
+
+
+def mission_waypoint_name(point, tolerance: float = 1e-3) -> str | None:
+    """The letter of the MISSION_WAYPOINTS entry within ``tolerance`` [m] of ``point`` (x, y) [m], or None."""
+    for name, where in MISSION_WAYPOINTS.items():
+        if math.dist(where, tuple(map(float, point))) < tolerance:
+            return name
+    return None
 
 
 class ObservationSet(str, enum.Enum):

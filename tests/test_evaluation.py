@@ -15,7 +15,16 @@ import torch
 from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
 from ocean_warp.envs import MissionConfig, SailingEnv, policies
-from ocean_warp.envs.evaluation import _RecordedDecision, evaluate_mission, main, mission_task
+from ocean_warp.envs.evaluation import (
+    AutopilotController,
+    FleetController,
+    PolicyController,
+    RecordedDecision,
+    evaluate_mission,
+    main,
+    mission_task,
+    sail_mission,
+)
 from ocean_warp.envs.mission_metrics import (
     cross_track_profile,
     cross_track_spread,
@@ -221,7 +230,7 @@ def test_recorded_decision_is_env_step(device):
     task = tiny_mission(episode_time=3.0)
     stepped = SailingEnv(task, 3, device=device, seed=5)
     recorded = SailingEnv(task, 3, device=device, seed=5)
-    decision = _RecordedDecision(recorded)
+    decision = RecordedDecision(recorded)
     generator = torch.Generator().manual_seed(1)
     for k in range(5):
         actions = (2.0 * torch.rand(3, 3, generator=generator) - 1.0).to(stepped.torch_device)
@@ -242,6 +251,68 @@ def test_recorded_decision_is_env_step(device):
             assert np.all(np.linalg.norm(before_reset - now, axis=1) > 1.0)
         else:
             np.testing.assert_array_equal(before_reset, now)
+
+
+def test_recorded_decision_frames_inside_the_decision(device):
+    """Four frames of a 20-step decision are the states after physics steps 5, 10, 15 and 20, read here
+    step by step from a twin environment; the last frame is the decision's recorded pose."""
+    task = tiny_mission()
+    recorded = SailingEnv(task, 3, device=device, seed=2)
+    twin = SailingEnv(task, 3, device=device, seed=2)
+    decision = RecordedDecision(recorded, frames_per_decision=4)
+    actions = torch.tensor([[0.6, -0.2, 0.4], [0.2, 0.5, -0.7], [1.0, 0.0, 0.1]], device=recorded.torch_device)
+    recorded.buffers.actions.copy_(actions)
+    decision()
+    twin.buffers.actions.copy_(actions)
+    twin.launch_actions()
+    expected = []
+    for step in range(twin.steps_per_decision):
+        twin.simulator.launch_step()
+        if (step + 1) % (twin.steps_per_decision // 4) == 0:
+            state = twin.simulator.state
+            expected.append((state.position.numpy().copy(), state.orientation.numpy().copy(),
+                             state.boom_angle.numpy().copy(), state.rudder_angle.numpy().copy()))
+    frames = decision.frames()
+    assert frames["position"].shape == (4, 3, 3) and frames["boom_angle"].shape == (4, 3)
+    for f, (position, orientation, boom, rudder) in enumerate(expected):
+        np.testing.assert_array_equal(frames["position"][f], position)
+        np.testing.assert_array_equal(frames["orientation"][f], orientation)
+        np.testing.assert_array_equal(frames["boom_angle"][f], boom)
+        np.testing.assert_array_equal(frames["rudder_angle"][f], rudder)
+    np.testing.assert_array_equal(frames["position"][-1], decision.position.numpy())
+    assert np.abs(np.diff(frames["rudder_angle"], axis=0)).max() > 0  # the rudder moves during the decision
+    with pytest.raises(ValueError, match="frames_per_decision"):
+        RecordedDecision(recorded, frames_per_decision=3)  # does not divide 20 steps
+
+
+def test_fleet_controller_gives_each_run_its_controllers_actions(tmp_path):
+    """Runs 0 and 2 sail with the policy, 1 and 3 with the autopilot: each run's actions equal what its
+    controller alone computes in a twin environment; the split results match separate evaluations."""
+    random_policy_file(tmp_path / "random.pt")
+    policy = load_policy(tmp_path / "random.pt")
+    task = tiny_mission(episode_time=30.0)
+    mask = np.array([True, False, True, False])
+    fleet = FleetController([(PolicyController(policy), mask), (AutopilotController(), ~mask)])
+    env = SailingEnv(task, 4, device="cpu", seed=3)
+    alone = {name: SailingEnv(task, 4, device="cpu", seed=3) for name in ("policy", "autopilot")}
+    controllers = {"policy": PolicyController(policy), "autopilot": AutopilotController()}
+    fleet.reset(env)
+    for name, controller in controllers.items():
+        controller.reset(alone[name])
+    fleet.act(env)
+    for name, rows in (("policy", mask), ("autopilot", ~mask)):
+        controllers[name].act(alone[name])
+        np.testing.assert_array_equal(env.buffers.actions.numpy()[rows], alone[name].buffers.actions.numpy()[rows])
+    # sailed whole: the policy's runs of the fleet are the policy's runs of a policy-only evaluation
+    result = sail_mission(SailingEnv(task, 4, device="cpu", seed=3), fleet)
+    reference = sail_mission(SailingEnv(task, 4, device="cpu", seed=3), PolicyController(policy))
+    mine, theirs = result.subset(mask, "policy"), reference.subset(mask, "policy")
+    assert mine.name == "policy" and mine.runs == 2
+    for a, b in zip(mine.paths, theirs.paths):
+        np.testing.assert_allclose(a.xy, b.xy, rtol=0, atol=1e-4)
+    np.testing.assert_array_equal(mine.time_s, theirs.time_s)
+    with pytest.raises(ValueError, match="exactly one controller"):
+        FleetController([(PolicyController(policy), mask), (AutopilotController(), mask)])
 
 
 # --- the command line --------------------------------------------------------------------------------
