@@ -1,0 +1,188 @@
+"""``ocean-warp demo``: a fleet of E-Boats sails the BCDACA mission in a JONSWAP sea, some boats with the
+shipped policy and the rest with the classical autopilot, all in one batch; it writes the USD stage (with
+a preview PNG), the trajectory picture and the results table, and prints a summary.
+
+On the CPU the fleet floats on the seed twin's four-point buoyancy by default (``hull="auto"``): the
+per-triangle mesh hull costs about 30 times more, too much for a demo of a few minutes on two cores.
+On a GPU it uses the mesh hull.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import os
+import sys
+import time
+
+import numpy as np
+import warp as wp
+
+from ocean_warp.validation import require_in_range, require_positive
+
+from .core import SailingEnv
+from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
+from .evaluation import (
+    AutopilotController,
+    FleetController,
+    MissionEvaluation,
+    PolicyController,
+    sail_mission,
+)
+from .policies import shipped_policy_path
+from .policy_io import load_policy
+
+__all__ = ["DemoConfig", "DemoResult", "demo_task", "run_demo", "main"]
+
+@dataclasses.dataclass(frozen=True)
+class DemoConfig(FleetScenario):
+    """What the demo sails and records (see :class:`FleetScenario` for the fleet, sea and stage)."""
+
+    policy_share: float = 0.5
+    """Fraction of the boats sailed by the shipped policy (the first ones); the rest by the autopilot."""
+    time_limit: float = 900.0
+    """Per boat [s]; a boat still sailing then counts as timed out."""
+    loop_period: float = 60.0
+    """The sea repeats every this many seconds [s], so the stage holds one seamless loop of it."""
+    usd: bool = True
+    """Write the USD stage (and its preview)."""
+
+    def __post_init__(self):
+        super().__post_init__()
+        owner = "DemoConfig"
+        require_in_range(owner, "policy_share", self.policy_share, 0.0, 1.0)
+        require_positive(owner, "time_limit", self.time_limit, unit=" [s]")
+        require_positive(owner, "loop_period", self.loop_period, unit=" [s]")
+        if not isinstance(self.usd, bool):
+            raise ValueError(f"{owner}.usd must be True or False, got {self.usd!r}")
+
+    @property
+    def policy_boats(self) -> int:
+        return int(round(self.policy_share * self.boats))
+
+
+@dataclasses.dataclass
+class DemoResult:
+    """What :func:`run_demo` did: the evaluation (one result per controller), the files it wrote, and
+    its speed."""
+
+    evaluation: MissionEvaluation
+    files: dict[str, str]
+    sail_wall_s: float
+    """Wall time of the sailing loop [s] (recording included, start-up and writing the table not)."""
+    simulated_boat_seconds: float
+    """Sum over the boats of the simulated time they sailed [s]."""
+
+    @property
+    def real_time_factor(self) -> float:
+        """Simulated boat-seconds per wall second of the sailing loop."""
+        return self.simulated_boat_seconds / self.sail_wall_s if self.sail_wall_s > 0 else math.nan
+
+
+def demo_task(config: DemoConfig, device) -> object:
+    """The mission the demo sails: the scenario's course task with the demo's time limit and loop."""
+    return config.task(time_limit=config.time_limit, loop_period=config.loop_period, device=device)
+
+
+def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike = "out/demo",
+             progress: bool = True, recorder_factory=None) -> DemoResult:
+    """Sail the demo's fleet once and write its files into ``out``.
+
+    With ``config.usd`` the fleet is recorded into ``out/eboat_fleet.usdc`` (:mod:`.demo_stage`);
+    otherwise ``recorder_factory(env, path, frames_per_decision=F)``, if given, makes the recorder: an
+    object with ``record(time_s, frames)``, ``abort()`` and ``close() -> dict[str, str]`` (files written).
+    """
+    out = os.fspath(out)
+    task = demo_task(config, device)
+    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
+    policy_mask = np.arange(config.boats) < config.policy_boats
+    groups = []
+    if policy_mask.any():
+        groups.append((PolicyController(load_policy(shipped_policy_path("EBoatMission-v0"))), policy_mask))
+    if not policy_mask.all():
+        groups.append((AutopilotController(), ~policy_mask))
+    fleet = FleetController(groups, name="fleet")
+    frames = config.frames_per_second
+    recorder = None
+    if recorder_factory is None and config.usd:
+        from .demo_stage import MissionStageRecorder
+
+        recorder = MissionStageRecorder(env, os.path.join(out, "eboat_fleet.usdc"), frames_per_decision=frames,
+                                        ocean_resolution=config.ocean_resolution)
+    elif recorder_factory is not None:
+        recorder = recorder_factory(env, os.path.join(out, "eboat_fleet.usdc"), frames_per_decision=frames)
+
+    def record(k: int, decision) -> None:
+        recorder.record((k + 1) * env.decision_period, decision.frames())
+
+    started = time.perf_counter()
+    try:
+        result = sail_mission(env, fleet, progress=progress, frames_per_decision=frames,
+                              on_decision=None if recorder is None else record)
+    except BaseException:
+        if recorder is not None:
+            recorder.abort()
+        raise
+    files = recorder.close() if recorder is not None else {}
+    sail_wall = time.perf_counter() - started
+    results = {}
+    if policy_mask.any():
+        results["policy"] = result.subset(policy_mask, "policy")
+    if not policy_mask.all():
+        results["autopilot"] = result.subset(~policy_mask, "autopilot")
+    settings = {"runs": config.boats, "sea_state": config.sea_state, "wind": config.wind, "seed": config.seed,
+                "device": str(env.device), "time_limit": task.episode_time}
+    evaluation = MissionEvaluation(task=task, settings=settings, results=results)
+    files.update(evaluation.write(out))
+    sailed = sum(len(path.propeller) for path in result.paths) * env.decision_period
+    return DemoResult(evaluation=evaluation, files=files, sail_wall_s=sail_wall, simulated_boat_seconds=sailed)
+
+
+def _summary(config: DemoConfig, result: DemoResult, hull: str) -> str:
+    lines = [f"{config.boats} E-Boats ({config.policy_boats} policy, {config.boats - config.policy_boats} autopilot), "
+             f"{hull} hull, JONSWAP Hs {config.sea_state} m, wind {config.wind} m/s with gusts, seed {config.seed}"]
+    for name, controller in result.evaluation.results.items():
+        times = controller.time_s[controller.success]
+        timing = (f", mission time {times.mean():.0f} s ({times.min():.0f}-{times.max():.0f})" if times.size else "")
+        lines.append(f"  {name:>9}: {int(controller.success.sum())}/{controller.runs} completed{timing}")
+    lines.append(f"simulated {result.simulated_boat_seconds:.0f} boat-seconds in {result.sail_wall_s:.1f} s: "
+                 f"real-time factor {result.real_time_factor:.0f}")
+    lines += [f"wrote {path}" for path in result.files.values()]
+    return "\n".join(lines)
+
+
+def _parser() -> argparse.ArgumentParser:
+    defaults = DemoConfig()
+    parser = argparse.ArgumentParser(
+        prog="ocean-warp demo", formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        description="A fleet of E-Boats sails the BCDACA mission in waves, half with the shipped policy and half "
+        "with the classical autopilot; writes a USD stage with a preview PNG, trajectories.png and results.csv.")
+    add_scenario_arguments(parser, defaults)
+    parser.add_argument("--policy-share", type=float, default=defaults.policy_share,
+                        help="fraction of the boats sailed by the policy (0-1)")
+    parser.add_argument("--time-limit", type=float, default=defaults.time_limit, metavar="SECONDS",
+                        help="per boat [s]")
+    parser.add_argument("--loop-period", type=float, default=defaults.loop_period, metavar="SECONDS",
+                        help="the sea repeats every this many seconds (one seamless loop in the stage)")
+    parser.add_argument("--no-usd", action="store_true", help="skip the USD stage and its preview")
+    parser.add_argument("--out", default="out/demo", help="folder for the stage, PNGs and tables")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``ocean-warp demo``; returns the exit code (2 for a bad option)."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    try:
+        config = DemoConfig(**scenario_arguments(args), policy_share=args.policy_share, time_limit=args.time_limit,
+                            loop_period=args.loop_period, usd=not args.no_usd)
+        device = str(wp.get_device(args.device))
+    except (ValueError, RuntimeError) as error:
+        print(f"ocean-warp demo: {error}", file=sys.stderr)
+        return 2
+    result = run_demo(config, device=device, out=args.out, progress=not args.no_progress)
+    hull = demo_task(config, device).simulator.boat.hydrostatics.value
+    print(result.evaluation.format_table())
+    print(_summary(config, result, hull))
+    return 0

@@ -1,0 +1,101 @@
+"""A fleet on the BCDACA course, all boats on the same water: the settings the demo and the USD export
+share, and the task they build from them."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+
+import warp as wp
+
+from ocean_warp.eboat import Hydrostatics
+from ocean_warp.validation import require_in_range, require_int_in_range
+
+from .evaluation import mission_task
+
+__all__ = ["FleetScenario", "HULLS", "fleet_course_task", "add_scenario_arguments", "scenario_arguments"]
+
+HULLS = ("auto", "mesh", "points")
+""""mesh" (per-triangle pressure), "points" (the seed twin's four-point buoyancy) or "auto" (points on the
+CPU, where the mesh hull costs about 30 times more, mesh on a GPU)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class FleetScenario:
+    """The fleet, its sea and wind, and how the stage samples them."""
+
+    boats: int = 16
+    """Boats in the fleet."""
+    sea_state: float = 0.3
+    """Significant wave height Hs of the JONSWAP sea [m]."""
+    wind: float = 10.0
+    """Mean true wind speed [m/s], toward +x, with gusts."""
+    seed: int = 0
+    """Seed of the sea, the gusts and the starts."""
+    hull: str = "auto"
+    """One of :data:`HULLS`."""
+    frames_per_second: int = 2
+    """Frames of the USD stage per simulated second; must divide the 20 physics steps of a decision."""
+    ocean_resolution: int = 64
+    """At most this many ocean mesh vertices along a side of the area shown."""
+
+    def __post_init__(self):
+        owner = type(self).__name__
+        require_int_in_range(owner, "boats", self.boats, 1, 1_000_000)
+        require_in_range(owner, "sea_state", self.sea_state, 0.0, 5.0)
+        require_in_range(owner, "wind", self.wind, 0.0, 30.0)
+        require_int_in_range(owner, "seed", self.seed, 0, 2**31 - 1)
+        if self.hull not in HULLS:
+            raise ValueError(f"{owner}.hull must be one of {', '.join(HULLS)}, got {self.hull!r}")
+        require_int_in_range(owner, "frames_per_second", self.frames_per_second, 1, 20)
+        require_int_in_range(owner, "ocean_resolution", self.ocean_resolution, 2, 4096)
+
+    def task(self, *, time_limit: float, loop_period: float | None, device) -> object:
+        """This scenario's :func:`fleet_course_task`."""
+        return fleet_course_task(sea_state=self.sea_state, wind=self.wind, seed=self.seed, time_limit=time_limit,
+                                 hull=self.hull, loop_period=loop_period, device=device)
+
+
+def fleet_course_task(*, sea_state: float, wind: float, seed: int, time_limit: float, hull: str,
+                      loop_period: float | None, device) -> object:
+    """``mission_task`` (BCDACA, the seed's observation) with this sea [m], wind [m/s], seed and time limit
+    [s], the hull ``hull`` resolves to on ``device`` (see :data:`HULLS`), the sea looping every
+    ``loop_period`` [s] (None: no loop) and every boat on the same water."""
+    if hull not in HULLS:
+        raise ValueError(f"fleet_course_task: hull must be one of {', '.join(HULLS)}, got {hull!r}")
+    task = mission_task(sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit, observation="seed")
+    simulator = task.simulator
+    if hull == "auto":
+        hull = "mesh" if wp.get_device(device).is_cuda else "points"
+    hydrostatics = Hydrostatics.MESH if hull == "mesh" else Hydrostatics.POINTS
+    simulator = dataclasses.replace(
+        simulator, boat=dataclasses.replace(simulator.boat, hydrostatics=hydrostatics),
+        ocean=dataclasses.replace(simulator.ocean, loop_period=loop_period))
+    # Every boat on the same water (not each on its own part of the periodic tile): the stage then shows
+    # a fleet racing the one course on the one sea, each boat with its own start and gusts.
+    return dataclasses.replace(task, simulator=simulator, ocean_spacing=False)
+
+
+def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScenario) -> None:
+    """The command-line options of :class:`FleetScenario`'s fields, with ``defaults``' values, and the
+    options every fleet command has: ``--device`` and ``--no-progress``."""
+    parser.add_argument("--boats", type=int, default=defaults.boats, help="boats in the fleet")
+    parser.add_argument("--sea-state", type=float, default=defaults.sea_state, metavar="HS",
+                        help="significant wave height of the JONSWAP sea [m]")
+    parser.add_argument("--wind", type=float, default=defaults.wind, help="mean true wind speed [m/s]")
+    parser.add_argument("--seed", type=int, default=defaults.seed, help="seed of sea, gusts and starts")
+    parser.add_argument("--hull", choices=HULLS, default=defaults.hull,
+                        help="mesh: per-triangle pressure; points: the seed's four-point buoyancy; auto: points on "
+                        "the CPU, mesh on a GPU")
+    parser.add_argument("--fps", type=int, default=defaults.frames_per_second,
+                        help="USD frames per simulated second (1, 2, 4, 5, 10 or 20)")
+    parser.add_argument("--ocean-resolution", type=int, default=defaults.ocean_resolution,
+                        help="ocean mesh vertices along a side of the area shown, at most")
+    parser.add_argument("--device", default="cpu", help='Warp device: "cpu", "cuda" or "cuda:N"')
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def scenario_arguments(args: argparse.Namespace) -> dict:
+    """:class:`FleetScenario`'s fields from options parsed by :func:`add_scenario_arguments`."""
+    return dict(boats=args.boats, sea_state=args.sea_state, wind=args.wind, seed=args.seed, hull=args.hull,
+                frames_per_second=args.fps, ocean_resolution=args.ocean_resolution)

@@ -1,0 +1,175 @@
+"""``ocean-warp export-usd``: record any scenario to a USD stage: a fleet on the BCDACA course in a JONSWAP
+sea, steered by the shipped policy, the classical autopilot or fixed commands, for a given duration.
+
+    ocean-warp export-usd --boats 8 --sea-state 0.5 --wind 8 --duration 120 --controller autopilot \\
+        --out out/autopilot.usdc
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import os
+import sys
+import time
+
+import numpy as np
+import torch
+import warp as wp
+
+from ocean_warp.validation import require_positive
+
+from .core import SailingEnv
+from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
+from .evaluation import AutopilotController, PolicyController, RecordedDecision
+from .policies import shipped_policy_path
+from .policy_io import CheckpointError, load_policy
+
+__all__ = ["ExportConfig", "FixedController", "export_scenario", "main"]
+
+CONTROLLERS = ("policy", "autopilot", "fixed")
+
+
+@dataclasses.dataclass(frozen=True)
+class ExportConfig(FleetScenario):
+    """The scenario to record (see :class:`FleetScenario` for the fleet, sea and stage)."""
+
+    boats: int = 8
+    frames_per_second: int = 5
+    duration: float = 120.0
+    """Simulated time to record [s] (whole decisions of 1 s)."""
+    controller: str = "policy"
+    """"policy" (``policy`` or the shipped one), "autopilot" or "fixed" (``actions`` throughout)."""
+    actions: tuple[float, float, float] = (0.4, 0.0, 0.0)
+    """The fixed commands, each in [-1, 1]: propeller level int(5 a0), sheet (a1 + 1) 45 deg, rudder 60 a2 deg."""
+    policy: str | None = None
+    """Path of an exported policy (None: the shipped mission policy)."""
+    loop_period: float | None = None
+    """Make the sea repeat every this many seconds and store one loop of it (None: a mesh per frame)."""
+    instanced: bool | None = None
+    """Point instancers (True), a prim per boat (False), or chosen by the fleet's size (None)."""
+
+    def __post_init__(self):
+        super().__post_init__()
+        owner = "ExportConfig"
+        require_positive(owner, "duration", self.duration, unit=" [s]")
+        if self.controller not in CONTROLLERS:
+            raise ValueError(f"{owner}.controller must be one of {', '.join(CONTROLLERS)}, got {self.controller!r}")
+        if len(self.actions) != 3 or any(not -1.0 <= float(a) <= 1.0 for a in self.actions):
+            raise ValueError(f"{owner}.actions must be three numbers in [-1, 1], got {self.actions!r}")
+        if self.loop_period is not None:
+            require_positive(owner, "loop_period", self.loop_period, unit=" [s]")
+
+
+class FixedController:
+    """The same commands for every boat, every decision."""
+
+    def __init__(self, actions, name: str = "fixed"):
+        self.actions = torch.as_tensor(np.asarray(actions, dtype=np.float32)).reshape(1, 3)
+        self.name = name
+
+    def reset(self, env: SailingEnv) -> None:
+        self._actions = self.actions.to(env.torch_device).expand(env.num_envs, 3).contiguous()
+
+    def act(self, env: SailingEnv) -> None:
+        env.buffers.actions.copy_(self._actions)
+
+
+def scenario_task(config: ExportConfig, device):
+    """The BCDACA course with the scenario's sea, wind, seed, hull and loop, every boat on the same water."""
+    return config.task(time_limit=max(config.duration, 1.0), loop_period=config.loop_period, device=device)
+
+
+def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: str = "cpu", ascii: bool | None = None,
+                    progress: bool = True) -> dict[str, str]:
+    """Sail the scenario and record it to the stage at ``path``; returns the files written (stage, ocean
+    loop where there is one, preview PNG)."""
+    from tqdm import tqdm
+
+    from .demo_stage import MissionStageRecorder
+
+    task = scenario_task(config, device)
+    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
+    if config.controller == "policy":
+        controller = PolicyController(load_policy(config.policy or shipped_policy_path("EBoatMission-v0")))
+    elif config.controller == "autopilot":
+        controller = AutopilotController()
+    else:
+        controller = FixedController(config.actions)
+    env.reset(seed=config.seed)
+    controller.reset(env)
+    decision = RecordedDecision(env, config.frames_per_second)
+    recorder = MissionStageRecorder(env, path, frames_per_decision=config.frames_per_second,
+                                    ocean_resolution=config.ocean_resolution, instanced=config.instanced,
+                                    ascii=ascii)
+    decisions = int(round(config.duration / env.decision_period))
+    try:
+        for k in tqdm(range(decisions), desc="export-usd", unit="decision", disable=not progress):
+            controller.act(env)
+            decision()
+            recorder.record((k + 1) * env.decision_period, decision.frames())
+    except BaseException:
+        recorder.abort()
+        raise
+    return recorder.close()
+
+
+def _actions(text: str) -> tuple[float, float, float]:
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected three numbers like 0.4,0,0.1, got {text!r}") from None
+    if len(values) != 3:
+        raise argparse.ArgumentTypeError(f"expected three numbers like 0.4,0,0.1, got {text!r}")
+    return values
+
+
+def _parser() -> argparse.ArgumentParser:
+    d = ExportConfig()
+    parser = argparse.ArgumentParser(
+        prog="ocean-warp export-usd", formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        description="Record a fleet on the BCDACA course in a JONSWAP sea to a USD stage (Z up, metres), with a "
+        "preview PNG beside it.")
+    add_scenario_arguments(parser, d)
+    parser.add_argument("--duration", type=float, default=d.duration, metavar="SECONDS", help="simulated time [s]")
+    parser.add_argument("--controller", choices=CONTROLLERS, default=d.controller, help="who steers every boat")
+    parser.add_argument("--policy", default=None, metavar="PATH", help="exported policy (default: the shipped one)")
+    parser.add_argument("--actions", type=_actions, default=d.actions, metavar="A0,A1,A2",
+                        help="fixed commands in [-1, 1]: propeller int(5 a0), sheet (a1 + 1) 45 deg, rudder 60 a2 deg")
+    parser.add_argument("--loop-period", type=float, default=None, metavar="SECONDS",
+                        help="a sea that repeats every this many seconds, stored once as a seamless loop")
+    layout = parser.add_mutually_exclusive_group()
+    layout.add_argument("--instanced", dest="instanced", action="store_true", default=None,
+                        help="point instancers for the boats (default: above 64 boats)")
+    layout.add_argument("--prims", dest="instanced", action="store_false", help="one prim per boat")
+    parser.add_argument("--usda", action="store_true", help="text (.usda) instead of crate (.usdc)")
+    parser.add_argument("--out", default="out/scenario.usdc", help="the stage to write")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``ocean-warp export-usd``; returns the exit code (2 for a bad option or policy)."""
+    args = _parser().parse_args(argv)
+    out = args.out
+    if args.usda and out.endswith(".usdc"):
+        out = out[: -len(".usdc")] + ".usda"
+    try:
+        config = ExportConfig(**scenario_arguments(args), duration=args.duration, controller=args.controller,
+                              actions=args.actions, policy=args.policy, loop_period=args.loop_period,
+                              instanced=args.instanced)
+        device = str(wp.get_device(args.device))
+    except (ValueError, RuntimeError) as error:  # a bad setting; an unknown device
+        print(f"ocean-warp export-usd: {error}", file=sys.stderr)
+        return 2
+    started = time.perf_counter()
+    try:
+        files = export_scenario(config, out, device=device, ascii=True if args.usda else None,
+                                progress=not args.no_progress)
+    except (ValueError, CheckpointError) as error:
+        print(f"ocean-warp export-usd: {error}", file=sys.stderr)
+        return 2
+    seconds = time.perf_counter() - started
+    print(f"{config.boats} boats x {config.duration:g} s ({config.controller}) recorded in {seconds:.1f} s")
+    for name, path in files.items():
+        print(f"wrote {path} ({name}, {os.path.getsize(path) / 2**20:.1f} MiB)")
+    return 0
