@@ -19,7 +19,13 @@ from typing import Any
 
 import warp as wp
 
-from .ocean_surface import OceanSurface, surface_height_velocity
+from .ocean_surface import (
+    OceanSurface,
+    height_velocity_at_grid,
+    surface_height_velocity,
+    undisplaced_position,
+    undisplaced_position_near,
+)
 from .spatial import vec6, wrench, wrench_at
 
 __all__ = [
@@ -110,6 +116,16 @@ def friction_coefficient(speed: float, length: float, water: WaterModel) -> floa
 
 
 @wp.func
+def falloff(cosine: float, exponent: float) -> float:
+    """cosine ** exponent for cosine >= 0, with the common exponents 0.5 and 1 without ``pow``."""
+    if exponent == 0.5:
+        return wp.sqrt(cosine)
+    if exponent == 1.0:
+        return cosine
+    return wp.pow(cosine, exponent)
+
+
+@wp.func
 def submerged_piece_wrench(
     r0: wp.vec3, r1: wp.vec3, r2: wp.vec3,
     d0: float, d1: float, d2: float,
@@ -145,10 +161,10 @@ def submerged_piece_wrench(
         drag = wp.vec3()
         if cos_t > 0.0:
             pressure = (water.pressure_drag_linear + water.pressure_drag_quadratic * s) * s
-            drag = -(pressure * wp.pow(cos_t, water.pressure_drag_falloff) * area) * normal
+            drag = -(pressure * falloff(cos_t, water.pressure_drag_falloff) * area) * normal
         else:
             pressure = (water.suction_linear + water.suction_quadratic * s) * s
-            drag = (pressure * wp.pow(-cos_t, water.suction_falloff) * area) * normal
+            drag = (pressure * falloff(-cos_t, water.suction_falloff) * area) * normal
         if water.skin_friction != 0:
             tangential = relative - wp.dot(relative, normal) * normal
             drag -= (0.5 * water.density * friction * area * wp.length(tangential)) * tangential
@@ -324,11 +340,14 @@ def slamming_wrench(
 
 
 @wp.func
-def sample_vertex_water(surface: OceanSurface, local: wp.vec3, origin: wp.vec3, rotation: wp.quat) -> wp.vec4:
+def sample_vertex_water(surface: OceanSurface, local: wp.vec3, origin: wp.vec3, rotation: wp.quat,
+                        origin_shift: wp.vec2) -> wp.vec4:
     """(depth below the local surface [m], water velocity [m/s] in the body frame) at the hull point
-    ``local`` (body frame) of a boat at ``origin`` turned by ``rotation``."""
+    ``local`` (body frame) of a boat at ``origin`` turned by ``rotation``. ``origin_shift`` [m] is the
+    choppy displacement at the boat's origin (see :func:`undisplaced_position_near`)."""
     offset = wp.quat_rotate(rotation, local)
-    water = surface_height_velocity(surface, wp.vec2(origin[0] + offset[0], origin[1] + offset[1]))
+    xy = wp.vec2(origin[0] + offset[0], origin[1] + offset[1])
+    water = height_velocity_at_grid(surface, undisplaced_position_near(surface, xy, origin_shift))
     flow = wp.quat_rotate_inv(rotation, wp.vec3(water[1], water[2], water[3]))
     return wp.vec4(water[0] - (origin[2] + offset[2]), flow[0], flow[1], flow[2])
 
@@ -389,20 +408,25 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
         first_vertex = meshes.vertex_start[kind]
         vertex_count = meshes.vertex_count[kind]
 
+        # Every thread undoes the choppy displacement at the boat's origin (the same few lookups in each
+        # thread cost less than a broadcast): its vertices start from there.
+        origin_xy = wp.vec2(origin[0], origin[1])
+        origin_grid = undisplaced_position(surface, origin_xy)
+        origin_shift = origin_xy - origin_grid
+        origin_water = height_velocity_at_grid(surface, origin_grid)
+        flow_at_origin = wp.quat_rotate_inv(rotation, wp.vec3(origin_water[1], origin_water[2], origin_water[3]))
+        if lane == 0:
+            boat_water_velocity[boat] = flow_at_origin
+
         water_at = wp.tile_zeros(shape=(slots,), dtype=wp.vec4, storage="shared")
         for round_index in range(vertex_rounds):
             vertex = round_index * block_dim + lane
             state = wp.vec4()
             if vertex < vertex_count:
-                state = sample_vertex_water(surface, meshes.vertices[first_vertex + vertex], origin, rotation)
+                state = sample_vertex_water(surface, meshes.vertices[first_vertex + vertex], origin, rotation,
+                                            origin_shift)
             wp.tile_assign(water_at, wp.tile(state, preserve_type=True), offset=(round_index * block_dim,))
         # (tile_assign synchronises the block: every thread now sees every vertex's state)
-
-        flow_at_origin = wp.vec3()
-        if lane == 0:
-            flow_at_origin = origin_water_velocity(surface, origin, rotation)
-            boat_water_velocity[boat] = flow_at_origin
-        flow_at_origin = wp.tile_from_thread(shape=(1,), value=flow_at_origin, thread_idx=0)[0]
 
         nu = velocity[boat]
         linear = wp.vec3(nu[0], nu[1], nu[2])

@@ -17,6 +17,8 @@ __all__ = [
     "OceanSurface",
     "periodic_bilinear",
     "undisplaced_position",
+    "undisplaced_position_near",
+    "height_velocity_at_grid",
     "surface_height",
     "surface_height_velocity",
     "surface_normal",
@@ -39,6 +41,9 @@ class OceanSurface:
     """Scale of the horizontal displacement."""
     inversion_iterations: int
     """Fixed-point iterations of :func:`undisplaced_position` (0 when choppiness is 0)."""
+    nearby_iterations: int
+    """Fixed-point iterations of :func:`undisplaced_position_near`, which starts from a nearby point's
+    solution (0 when choppiness is 0)."""
 
 
 @wp.func
@@ -76,6 +81,26 @@ def undisplaced_position(surface: OceanSurface, xy: wp.vec2) -> wp.vec2:
 
 
 @wp.func
+def undisplaced_position_near(surface: OceanSurface, xy: wp.vec2, shift: wp.vec2) -> wp.vec2:
+    """:func:`undisplaced_position` of ``xy`` [m], started from ``xy - shift`` where ``shift`` [m] is
+    choppiness * D at a nearby point (``p - undisplaced_position(p)``). D varies little over a boat's
+    length, so the start is already close and ``nearby_iterations`` contractions suffice."""
+    q = xy - shift
+    for _ in range(surface.nearby_iterations):
+        displacement = periodic_bilinear(surface, FIELD_DISPLACEMENT, q)
+        q = xy - surface.choppiness * wp.vec2(displacement[0], displacement[1])
+    return q
+
+
+@wp.func
+def height_velocity_at_grid(surface: OceanSurface, q: wp.vec2) -> wp.vec4:
+    """(height [m], u, v, w [m/s]) of the surface particle of grid position ``q`` [m]."""
+    height_rate = periodic_bilinear(surface, FIELD_HEIGHT, q)
+    horizontal = periodic_bilinear(surface, FIELD_VELOCITY, q)
+    return wp.vec4(height_rate[0], horizontal[0], horizontal[1], height_rate[1])
+
+
+@wp.func
 def surface_height(surface: OceanSurface, xy: wp.vec2) -> float:
     """Height of the surface [m] above world point ``xy`` [m] (z up, still water at 0)."""
     q = undisplaced_position(surface, xy)
@@ -86,10 +111,7 @@ def surface_height(surface: OceanSurface, xy: wp.vec2) -> float:
 def surface_height_velocity(surface: OceanSurface, xy: wp.vec2) -> wp.vec4:
     """(height [m], u, v, w [m/s]) of the surface above ``xy``: the water velocity is the linear
     orbital velocity of the surface particle there."""
-    q = undisplaced_position(surface, xy)
-    height_rate = periodic_bilinear(surface, FIELD_HEIGHT, q)
-    horizontal = periodic_bilinear(surface, FIELD_VELOCITY, q)
-    return wp.vec4(height_rate[0], horizontal[0], horizontal[1], height_rate[1])
+    return height_velocity_at_grid(surface, undisplaced_position(surface, xy))
 
 
 @wp.func

@@ -102,7 +102,9 @@ class Ocean:
         self.surface.inv_cell_size = 1.0 / self.config.cell_size
         self.surface.index_mask = n - 1
         self.surface.choppiness = self.config.choppiness
-        self.surface.inversion_iterations = self.config.inversion_iterations if self.config.choppiness > 0 else 0
+        choppy = self.config.choppiness > 0
+        self.surface.inversion_iterations = self.config.inversion_iterations if choppy else 0
+        self.surface.nearby_iterations = self.config.nearby_inversion_iterations if choppy else 0
 
         self._loop_period = wp.float64(self.config.loop_period or 0.0)
         self._along_y = spectra_along_y_kernel(n)

@@ -78,6 +78,10 @@ class OceanConfig:
     """Gravitational acceleration [m/s^2]."""
     inversion_iterations: int = 6
     """Fixed-point iterations that undo the choppy displacement when sampling (0 to 32)."""
+    nearby_inversion_iterations: int = 2
+    """The same, for a point whose start is a nearby point's solution (0 to 32): a hull's vertices start
+    from their boat's origin, and each iteration shrinks the error by choppiness * |grad D| (a few
+    hundredths in a sea that does not break), from about that times the vertex's distance to the origin."""
     loop_period: float | None = None
     """Make the sea repeat exactly every ``loop_period`` [s] (None: it never repeats). Each wave's angular
     frequency omega is moved to the nearest multiple of 2 pi / loop_period (one multiple at least, so no
@@ -131,6 +135,10 @@ class OceanConfig:
         set_field(
             "inversion_iterations",
             require_int_in_range(owner, "inversion_iterations", self.inversion_iterations, 0, 32),
+        )
+        set_field(
+            "nearby_inversion_iterations",
+            require_int_in_range(owner, "nearby_inversion_iterations", self.nearby_inversion_iterations, 0, 32),
         )
         if self.loop_period is not None:
             set_field("loop_period", require_positive(owner, "loop_period", self.loop_period, unit=" [s] or None"))
