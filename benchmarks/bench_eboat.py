@@ -6,7 +6,8 @@ integration) in boat-substeps per second.
 
 Boats sail in a JONSWAP sea (512 x 512 grid over 512 m, Hs 1 m, Tp 5 s, choppiness 0.5 or --choppiness) and gusty
 wind, with random headings and sheet, rudder and propeller commands; the E-Boat's hull has 2 024
-triangles. A step is 5 substeps of 0.01 s. On CUDA the step is a captured graph.
+triangles, or at most N with --hull-triangles N (benchmarks/hull_fidelity.py measures what that costs in
+fidelity). A step is 5 substeps of 0.01 s. On CUDA the step is a captured graph.
 """
 
 from __future__ import annotations
@@ -29,14 +30,16 @@ from benchmarks.timing import (  # noqa: E402
     write_results_json,
 )
 import ocean_warp as ow  # noqa: E402
-from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
 
 SUBSTEPS = 5
 
 
-def build(device, boats: int, ocean_every_substep: bool, choppiness: float, seed: int = 0) -> EBoatSimulator:
+def build(device, boats: int, ocean_every_substep: bool, choppiness: float, seed: int = 0,
+          hull_triangles: int | None = None) -> EBoatSimulator:
     rng = np.random.default_rng(seed)
     config = EBoatSimulatorConfig(
+        boat=EBoatConfig(hull_triangles=hull_triangles),
         ocean=ow.OceanConfig(tile_size=512.0, resolution=512, significant_wave_height=1.0, peak_period=5.0,
                              choppiness=choppiness, seed=seed),
         wind=ow.WindConfig(speed=7.0, gust_speed_std=1.0, gust_direction_std=0.1),
@@ -67,19 +70,22 @@ def main(argv=None) -> None:
     parser.add_argument("--device", default="cuda:0" if wp.get_cuda_device_count() else "cpu")
     parser.add_argument("--boats", type=int, nargs="+", default=[1024, 4096, 16384, 65536])
     parser.add_argument("--choppiness", type=float, default=0.5, help="of the sea (0: linear Airy waves)")
+    parser.add_argument("--hull-triangles", type=int, default=None, metavar="N",
+                        help="triangle budget of the hull (default: the full hull, 2 024 triangles)")
     parser.add_argument("--json", help="write the results here")
     args = parser.parse_args(argv)
     wp.config.log_level = logging.WARNING
     device = wp.get_device(args.device)
-    print(f"E-Boat step ({SUBSTEPS} substeps), choppiness {args.choppiness}; {device_description(device)}; "
-          f"{datetime.date.today()}")
+    triangles = EBoat(EBoatConfig(hull_triangles=args.hull_triangles)).hull.triangle_count
+    print(f"E-Boat step ({SUBSTEPS} substeps), choppiness {args.choppiness}, hull of {triangles} triangles; "
+          f"{device_description(device)}; {datetime.date.today()}")
     print("|  boats | ocean every substep: step [ms] | M boat-substeps/s | ocean once a step: step [ms] | "
           "M boat-substeps/s |")
     rows = []
     for boats in args.boats:
         row = {"boats": boats}
         for every, key in ((True, "every"), (False, "once")):
-            sim = build(device, boats, every, args.choppiness)
+            sim = build(device, boats, every, args.choppiness, hull_triangles=args.hull_triangles)
             seconds = time_step(sim)
             assert np.all(np.isfinite(sim.fleet.numpy()["position"])), "the benchmark boats must stay finite"
             row[f"{key}_step_ms"] = seconds * 1e3
@@ -89,7 +95,7 @@ def main(argv=None) -> None:
         print(f"| {boats:6d} | {row['every_step_ms']:10.3f} | {row['every_boat_substeps_per_s'] / 1e6:8.3g} | "
               f"{row['once_step_ms']:10.3f} | {row['once_boat_substeps_per_s'] / 1e6:8.3g} |", flush=True)
     if args.json:
-        write_results_json(args.json, device, choppiness=args.choppiness, rows=rows)
+        write_results_json(args.json, device, choppiness=args.choppiness, hull_triangles=triangles, rows=rows)
 
 
 if __name__ == "__main__":

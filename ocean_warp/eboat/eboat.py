@@ -15,7 +15,7 @@ from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
 from ..kernels.sailing_rig import RigParameters
 from ..validation import require_choice
-from .hull_shape import HullShape, eboat_hull
+from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull
 from .mass_properties import MassProperties, eboat_mass_properties
 from .sheet import ACTUATORS, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, Version
 
@@ -54,6 +54,11 @@ class EBoatConfig:
     They are not physics: off by default."""
     hull_shape: HullShape = dataclasses.field(default_factory=HullShape)
     """Dimensions of the procedural canoe body."""
+    hull_triangles: int | None = None
+    """Triangle budget of the physics hull (at least 40): the same shape meshed with fewer or more stations
+    and section points (:meth:`HullShape.with_triangle_budget`), for speed over detail; None (default):
+    ``hull_shape`` as it is (2 024 triangles). With a budget, ``hull_shape`` must keep the default
+    resolution, which the budget replaces. ``benchmarks/hull_fidelity.py`` measures what a budget costs."""
 
     def __post_init__(self):
         object.__setattr__(self, "version", require_choice("EBoatConfig", "version", self.version, Version))
@@ -61,6 +66,27 @@ class EBoatConfig:
                                                                 Hydrostatics))
         if not isinstance(self.original_tuning, bool):
             raise ValueError(f"EBoatConfig.original_tuning must be True or False, got {self.original_tuning!r}")
+        self._check_hull_triangles()
+
+    def _check_hull_triangles(self) -> None:
+        budget = self.hull_triangles
+        if budget is None:
+            return
+        if isinstance(budget, bool) or not isinstance(budget, (int, np.integer)) or budget < MIN_TRIANGLE_BUDGET:
+            raise ValueError(f"EBoatConfig.hull_triangles must be None or an integer >= {MIN_TRIANGLE_BUDGET}, "
+                             f"got {budget!r}")
+        default = HullShape()
+        if (self.hull_shape.stations, self.hull_shape.section_points) != (default.stations, default.section_points):
+            raise ValueError(f"EBoatConfig.hull_triangles ({budget}) chooses the hull's stations and section_points; "
+                             f"leave hull_shape's at {default.stations} and {default.section_points} (got "
+                             f"{self.hull_shape.stations} and {self.hull_shape.section_points}) or hull_triangles None")
+
+    @property
+    def meshed_hull_shape(self) -> HullShape:
+        """``hull_shape`` at the resolution the physics hull is built with (``hull_triangles``'s, if set)."""
+        if self.hull_triangles is None:
+            return self.hull_shape
+        return self.hull_shape.with_triangle_budget(int(self.hull_triangles))
 
 
 def load_foil_table() -> np.ndarray:
@@ -93,7 +119,7 @@ class EBoat:
         self.config = config if config is not None else EBoatConfig()
         version = self.config.version
         self.mass_properties: MassProperties = eboat_mass_properties(version)
-        self.hull = eboat_hull(self.config.hull_shape)
+        self.hull = eboat_hull(self.config.meshed_hull_shape)
         vrx = VRX[version]
         if self.config.hydrostatics is Hydrostatics.POINTS:
             damping = dict(linear_damping=vrx.linear_damping, quadratic_damping=vrx.quadratic_damping,

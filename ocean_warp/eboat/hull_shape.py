@@ -20,7 +20,24 @@ import numpy as np
 from ..hull import Hull
 from ..validation import require_finite, require_in_range, require_int_in_range, require_positive
 
-__all__ = ["HullShape", "eboat_hull"]
+_MIN_STATIONS, _MAX_STATIONS = 4, 400
+_MIN_SECTION_POINTS, _MAX_SECTION_POINTS = 3, 100
+_RATIO_BAND = 1.5
+"""A budget's mesh keeps stations / section_points within this factor of the full hull's 44 / 12, where
+any resolution within the budget does."""
+
+
+def triangle_count(stations: int, section_points: int) -> int:
+    """Triangles of :func:`eboat_hull`'s mesh with this resolution: 4 (stations - 1) (section_points - 1) on
+    the two skins, 2 (section_points - 1) in the bow fans, 2 stations - 1 on the deck and 2 section_points - 1
+    in the transom fan, which sums to ``stations * (4 * section_points - 2)`` (the full hull: 44 x 46 = 2 024)."""
+    return int(stations) * (4 * int(section_points) - 2)
+
+
+MIN_TRIANGLE_BUDGET = triangle_count(_MIN_STATIONS, _MIN_SECTION_POINTS)
+"""The coarsest mesh the procedure makes (4 stations of 3 points): 40 triangles."""
+
+__all__ = ["HullShape", "eboat_hull", "MIN_TRIANGLE_BUDGET", "resolution_for_budget", "triangle_count"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,8 +74,48 @@ class HullShape:
         require_positive(owner, "section_exponent", self.section_exponent)
         require_in_range(owner, "widest_at", self.widest_at, 0.05, 0.95)
         require_in_range(owner, "transom_beam_fraction", self.transom_beam_fraction, 0.0, 1.0)
-        require_int_in_range(owner, "stations", self.stations, 4, 400)
-        require_int_in_range(owner, "section_points", self.section_points, 3, 100)
+        require_int_in_range(owner, "stations", self.stations, _MIN_STATIONS, _MAX_STATIONS)
+        require_int_in_range(owner, "section_points", self.section_points, _MIN_SECTION_POINTS, _MAX_SECTION_POINTS)
+
+    @property
+    def triangle_count(self) -> int:
+        """Triangles of this shape's mesh, ``stations * (4 * section_points - 2)`` (see :func:`triangle_count`)."""
+        return triangle_count(self.stations, self.section_points)
+
+    def with_triangle_budget(self, budget: int) -> HullShape:
+        """This shape with ``stations`` and ``section_points`` chosen so that its mesh has at most ``budget``
+        triangles and as many as it can, with stations / section_points within a factor 1.5 of the full
+        hull's 44 / 12 where the budget allows (else as close to it as it allows); ties go to the closer
+        ratio. The dimensions [m] stay as they are. A budget of 2 024 or a little more gives the full hull."""
+        stations, section_points = resolution_for_budget(budget)
+        return dataclasses.replace(self, stations=stations, section_points=section_points)
+
+    @classmethod
+    def for_triangle_budget(cls, budget: int) -> HullShape:
+        """The default dimensions [m] meshed within ``budget`` triangles (see :meth:`with_triangle_budget`)."""
+        return cls().with_triangle_budget(budget)
+
+
+def resolution_for_budget(budget: int) -> tuple[int, int]:
+    """(stations, section_points) of the finest mesh of at most ``budget`` triangles, keeping about the
+    full hull's ratio of stations to section points (see :meth:`HullShape.with_triangle_budget`)."""
+    if isinstance(budget, bool) or not isinstance(budget, (int, np.integer)) or budget < MIN_TRIANGLE_BUDGET:
+        raise ValueError(f"HullShape.with_triangle_budget: budget must be an integer >= {MIN_TRIANGLE_BUDGET} "
+                         f"(the coarsest mesh: {_MIN_STATIONS} stations of {_MIN_SECTION_POINTS} points), "
+                         f"got {budget!r}")
+    target = HullShape.stations / HullShape.section_points
+    candidates = []
+    for section_points in range(_MIN_SECTION_POINTS, _MAX_SECTION_POINTS + 1):
+        stations = min(_MAX_STATIONS, int(budget) // (4 * section_points - 2))
+        if stations >= _MIN_STATIONS:
+            off_ratio = abs(math.log(stations / section_points / target))
+            candidates.append((off_ratio, triangle_count(stations, section_points), stations, section_points))
+    in_band = [c for c in candidates if c[0] <= math.log(_RATIO_BAND)]
+    if in_band:
+        best = max(in_band, key=lambda c: (c[1], -c[0]))
+    else:  # too few triangles for the ratio: the closest ratio, then the most triangles
+        best = min(candidates, key=lambda c: (c[0], -c[1]))
+    return best[2], best[3]
 
 
 def _half_beam(shape: HullShape, xi: np.ndarray) -> np.ndarray:
@@ -83,7 +140,8 @@ def _keel_depth(shape: HullShape, xi: np.ndarray) -> np.ndarray:
 
 
 def eboat_hull(shape: HullShape | None = None) -> Hull:
-    """The canoe body as a closed mesh: port and starboard skins, the deck and the transom."""
+    """The canoe body as a closed mesh [m]: port and starboard skins, the deck and the transom, with
+    ``shape.triangle_count`` triangles (:func:`triangle_count`)."""
     shape = shape or HullShape()
     n, m = shape.stations, shape.section_points
     xi = np.linspace(0.0, 1.0, n)

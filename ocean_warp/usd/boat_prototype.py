@@ -76,7 +76,7 @@ def eboat_parts(config: EBoatConfig | None = None, *, hull_detail: int = 2) -> B
     config = config if config is not None else EBoatConfig()
     if isinstance(hull_detail, bool) or not isinstance(hull_detail, int) or not 1 <= hull_detail <= 8:
         raise ValueError(f"eboat_parts: hull_detail must be an integer in [1, 8], got {hull_detail!r}")
-    shape = config.hull_shape
+    shape = config.meshed_hull_shape
     fine = dataclasses.replace(shape, stations=shape.stations * hull_detail,
                                section_points=shape.section_points * hull_detail)
     hull = eboat_hull(fine)
