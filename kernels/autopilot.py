@@ -1,4 +1,5 @@
-"""A heading-holding autopilot: the rudder command from the heading error and the yaw rate."""
+"""A heading-holding autopilot: the rudder command from the heading error and the yaw rate; and the
+running sums that tell how well a course was kept."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import warp as wp
 
 from .spatial import heading_of, vec6, wrap_angle
 
-__all__ = ["HeadingGains", "hold_heading"]
+__all__ = ["HeadingGains", "hold_heading", "accumulate_course_keeping"]
 
 
 @wp.struct
@@ -42,3 +43,19 @@ def hold_heading(
     if wp.abs(command) < gains.rudder_limit:
         integral[boat] = accumulated
     rudder_command[boat] = wp.clamp(command, -gains.rudder_limit, gains.rudder_limit)
+
+
+@wp.kernel(enable_backward=False)
+def accumulate_course_keeping(
+    target_heading: wp.array(dtype=float),
+    orientation: wp.array(dtype=wp.quat),
+    velocity: wp.array(dtype=vec6),
+    sums: wp.array(dtype=wp.vec3),
+):
+    """Add each boat's (surge [m/s], heading error wrap(heading - target) [rad], roll [rad], > 0 heeled to
+    starboard) to its running ``sums``: a window's means without reading the state back every step."""
+    boat = wp.tid()
+    q = orientation[boat]
+    roll = wp.atan2(2.0 * (q[3] * q[0] + q[1] * q[2]), 1.0 - 2.0 * (q[0] * q[0] + q[1] * q[1]))
+    error = wrap_angle(heading_of(q) - target_heading[boat])
+    sums[boat] = sums[boat] + wp.vec3(velocity[boat][0], error, roll)

@@ -4,12 +4,15 @@ import math
 
 import numpy as np
 import pytest
+import warp as wp
 
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.polar import speed_polar
 from ocean_warp.examples.polar import hull_speed
+from ocean_warp.kernels.autopilot import accumulate_course_keeping
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
+from tests.hull_setups import random_rotations
 
 CALM = ow.WindConfig(speed=0.0)
 
@@ -160,3 +163,22 @@ def test_coarse_polar_has_a_no_go_zone_and_sane_speeds(device):
     assert np.all(speed[1:] > 0.3)
     assert np.nanmax(speed) < 1.5 * hull_speed(EBoat())
     assert abs(heel[2]) < 35.0, "beam reach in 7 m/s"
+
+
+def test_course_keeping_sums_match_numpy(device, rng):
+    """The polar's on-device window sums: surge, wrapped heading error and roll, against frames.roll_pitch_yaw
+    (numpy) on random orientations and targets up to 2.5 rad off (wrapped across +-pi), added twice."""
+    count = 64
+    orientations = random_rotations(rng, count, max_angle=1.2)
+    velocities = rng.normal(0.0, 1.5, size=(count, 6))
+    roll, _, yaw = roll_pitch_yaw(orientations).T
+    offsets = rng.uniform(-2.5, 2.5, size=count)
+    targets = np.angle(np.exp(1j * (yaw - offsets)))
+    sums = wp.zeros(count, dtype=wp.vec3, device=device)
+    inputs = [wp.array(targets.astype(np.float32), dtype=float, device=device),
+              wp.array(orientations.astype(np.float32), dtype=wp.quat, device=device),
+              wp.array(velocities.astype(np.float32), dtype=wp.types.vector(6, float), device=device)]
+    for _ in range(2):
+        wp.launch(accumulate_course_keeping, dim=count, inputs=inputs, outputs=[sums], device=device)
+    expected = 2.0 * np.column_stack([velocities[:, 0], offsets, roll])
+    np.testing.assert_allclose(sums.numpy(), expected, atol=1e-4)

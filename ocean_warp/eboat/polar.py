@@ -15,8 +15,9 @@ import dataclasses
 import math
 
 import numpy as np
+import warp as wp
 
-from ..frames import roll_pitch_yaw
+from ..kernels.autopilot import accumulate_course_keeping
 from ..wind import WindConfig
 from .autopilot import HeadingAutopilot
 from .eboat import EBoatConfig
@@ -67,26 +68,38 @@ def speed_polar(*, wind_speeds=(4.0, 7.0, 10.0), wind_angles_deg=np.arange(0.0, 
     autopilot.set_target(grid_angle)
     steps = int(round((settle_time + average_time) / dt))
     averaging = int(round(average_time / dt))
-    speed_sum = np.zeros(count)
-    heading_error_sum = np.zeros(count)
-    heel_sum = np.zeros(count)
+    sums = wp.zeros(count, dtype=wp.vec3, device=sim.device)
+    settle_step = _replayable(sim.device, lambda: _sail_step(sim, autopilot))
+    averaging_step = _replayable(sim.device, lambda: _sail_step(sim, autopilot, sums))
     for step in range(steps):
-        autopilot.steer()
-        sim.step()
-        if step >= steps - averaging:
-            state = sim.fleet.numpy()
-            angles_now = roll_pitch_yaw(state["orientation"])
-            speed_sum += state["velocity"][:, 0]
-            heading_error_sum += np.angle(np.exp(1j * (angles_now[:, 2] - grid_angle)))
-            heel_sum += angles_now[:, 0]
-    mean_speed = speed_sum / averaging
-    held = ((np.abs(heading_error_sum / averaging) < math.radians(heading_tolerance_deg))
+        (averaging_step if step >= steps - averaging else settle_step)()
+    mean_speed, heading_error, heel = (sums.numpy().astype(np.float64) / averaging).T
+    held = ((np.abs(heading_error) < math.radians(heading_tolerance_deg))
             & (sim.fleet.numpy()["status"] == 0) & (mean_speed > 0.05))
     shape = (len(speeds), len(angles), len(sheets))
-    mean_speed, held, heel = mean_speed.reshape(shape), held.reshape(shape), (heel_sum / averaging).reshape(shape)
+    mean_speed, held, heel = mean_speed.reshape(shape), held.reshape(shape), heel.reshape(shape)
     candidate = np.where(held, mean_speed, -np.inf)
     best = np.argmax(candidate, axis=2)
     pick = lambda a: np.take_along_axis(a, best[..., None], axis=2)[..., 0]  # noqa: E731
     any_held = held.any(axis=2)
     return PolarResult(speeds, angles, np.where(any_held, pick(mean_speed), np.nan), np.where(any_held, sheets[best], np.nan),
                        np.where(any_held, pick(heel), np.nan), held, mean_speed, sheets)
+
+
+def _sail_step(sim: EBoatSimulator, autopilot: HeadingAutopilot, sums: wp.array | None = None) -> None:
+    """Launches of one step: steer, advance, and add the boats' course keeping to ``sums`` if given."""
+    autopilot.steer()
+    sim.launch_step()
+    if sums is not None:
+        wp.launch(accumulate_course_keeping, dim=sim.count, device=sim.device,
+                  inputs=[autopilot.target, sim.state.orientation, sim.state.velocity], outputs=[sums])
+
+
+def _replayable(device, launches):
+    """``launches`` as a callable that replays them; on CUDA captured once as a graph, so a step costs no
+    host work (uncaptured, the launches took ten times the GPU's time for the step)."""
+    if not wp.get_device(device).is_cuda:
+        return launches
+    with wp.ScopedCapture(device=device) as capture:
+        launches()
+    return lambda: wp.capture_launch(capture.graph)
