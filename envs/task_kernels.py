@@ -331,6 +331,7 @@ def draw_starts(
     task: TaskParameters,
     start: StartDistribution,
     seed: wp.array(dtype=int),
+    first_env: int,
     reset_mask: wp.array(dtype=wp.int32),
     origin: wp.array(dtype=wp.vec3),
     episode_count: wp.array(dtype=int),
@@ -353,7 +354,8 @@ def draw_starts(
     start_noise_scale: wp.array(dtype=float),
 ):
     """A new episode for every environment whose ``reset_mask`` is set, from its own random stream
-    (seed, environment, episode number): the simulator's start rows and the task's bookkeeping. The
+    (seed, environment ``first_env`` + index, episode number): the simulator's start rows and the task's
+    bookkeeping (``first_env``: the number of this batch's first environment in a larger one). The
     domain randomisation (foil and sensor-noise factors) draws last, from a stream of its own, so the
     rest of an episode's start does not depend on it."""
     env = wp.tid()
@@ -361,7 +363,7 @@ def draw_starts(
         return
     episode = episode_count[env] + 1
     episode_count[env] = episode
-    state = stream_state(seed[0], EPISODE_START, episode, env)
+    state = stream_state(seed[0], EPISODE_START, episode, first_env + env)
 
     jitter = start.position_jitter * wp.vec3(2.0 * wp.randf(state) - 1.0, 2.0 * wp.randf(state) - 1.0, 0.0)
     local = start.start_point + jitter
@@ -384,7 +386,7 @@ def draw_starts(
     start_gust_scale[env] = from_uniform(wp.randf(state), start.gust_scale_low, start.gust_scale_high, 0.0)
     # Domain randomisation, from a stream of its own: the draws above stay what they were without it.
     # wp.randf advances ``dr`` here (a wp.func would get a copy of the state; see ``from_uniform``).
-    dr = stream_state(seed[0], RANDOMISATION, episode, env)
+    dr = stream_state(seed[0], RANDOMISATION, episode, first_env + env)
     v = start.foil_variation
     sail = (1.0 - v) + (2.0 * v) * wp.randf(dr)
     keel = (1.0 - v) + (2.0 * v) * wp.randf(dr)

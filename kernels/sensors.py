@@ -53,6 +53,8 @@ class SensorModel:
     """Duration of one step [s], for the acceleration."""
     seed: int
     """Seed of the noise and bias streams."""
+    first_index: int
+    """Number of this batch's first boat in the random streams (see ``GustModel.first_index``)."""
 
 
 @wp.kernel(enable_backward=False)
@@ -101,7 +103,7 @@ def read_sensors(
                    through_water)
     bias = imu_bias[boat]
     scale = noise_scale[boat]
-    state = stream_state(sensors.seed, stream, counter[0], boat)
+    state = stream_state(sensors.seed, stream, counter[0], sensors.first_index + boat)
     for c in range(CHANNELS):
         truth[boat, c] = values[c]
         noise = scale * (sensors.noise_std[c] * wp.randn(state))
@@ -118,7 +120,7 @@ def read_sensors(
 def reset_sensors(
     mask: wp.array(dtype=wp.int32),
     bias_std: vec6,
-    seed: int,
+    sensors: SensorModel,
     counter: wp.array(dtype=int),
     orientation: wp.array(dtype=wp.quat),
     velocity: wp.array(dtype=vec6),
@@ -135,7 +137,7 @@ def reset_sensors(
         return
     scale = new_noise_scale[boat]
     noise_scale[boat] = scale
-    state = stream_state(seed, IMU_BIAS, counter[0], boat)
+    state = stream_state(sensors.seed, IMU_BIAS, counter[0], sensors.first_index + boat)
     bias = vec6(bias_std[0] * wp.randn(state), bias_std[1] * wp.randn(state), bias_std[2] * wp.randn(state),
                 bias_std[3] * wp.randn(state), bias_std[4] * wp.randn(state), bias_std[5] * wp.randn(state))
     imu_bias[boat] = scale * bias

@@ -40,6 +40,9 @@ class GustModel:
     """[m]"""
     seed: int
     """Seed of the gusts' random stream."""
+    first_index: int
+    """Number of this batch's first environment in the random stream: environment i draws as environment
+    ``first_index + i`` of one larger batch would (a shard of it draws the same gusts)."""
 
 
 @wp.func
@@ -73,7 +76,7 @@ def update_wind(
     reference height [m/s, world]. ``counter`` (1,) numbers the substeps for the random stream; the
     caller advances it. A NaN mean stays NaN (``wp.max`` would hide it), for the rig to report."""
     env = wp.tid()
-    state = stream_state(gusts.seed, WIND_GUSTS, counter[0], env)
+    state = stream_state(gusts.seed, WIND_GUSTS, counter[0], gusts.first_index + env)
     scale = gust_scale[env]
     new_speed = mean_speed[env] + (speed[env] - mean_speed[env]) * gusts.speed_decay
     new_speed += scale * gusts.speed_noise * wp.randn(state)

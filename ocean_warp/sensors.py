@@ -95,9 +95,10 @@ class Sensors:
     Each boat's noise (every channel and the IMU bias) is the config's times its ``noise_scale``."""
 
     def __init__(self, config: SensorConfig | None, count: int, *, masthead, wind, step: float, gravity: float,
-                 device=None):
+                 device=None, first_index: int = 0):
         """``masthead``: vane and anemometer in the body frame [m]; ``wind``: the :class:`Wind` they
-        read; ``step``: the Simulator's dt [s] (sensors read once per step); ``gravity`` [m/s^2]."""
+        read; ``step``: the Simulator's dt [s] (sensors read once per step); ``gravity`` [m/s^2];
+        ``first_index``: the random-stream number of the first boat (see ``SensorModel.first_index``)."""
         self.config = config if config is not None else SensorConfig()
         self.device = wp.get_device(device)
         self.count = int(count)
@@ -120,6 +121,7 @@ class Sensors:
         model.gravity = gravity
         model.step = step
         model.seed = self.config.seed
+        model.first_index = require_int_in_range("Sensors", "first_index", first_index, 0, 2**30)
         self._model = model
 
     def substep(self, simulator) -> None:
@@ -145,7 +147,7 @@ class Sensors:
         c = self.config
         bias_std = vec6(*([c.accelerometer_bias_std] * 3 + [c.gyroscope_bias_std] * 3))
         wp.launch(reset_sensors, dim=self.count, device=self.device,
-                  inputs=[mask, bias_std, c.seed, self._counter, fleet.orientation, fleet.velocity,
+                  inputs=[mask, bias_std, self._model, self._counter, fleet.orientation, fleet.velocity,
                           self.noise_scale if noise_scale is None else noise_scale],
                   outputs=[self.imu_bias, self._previous_velocity, self.noise_scale])
         self._read(mask, True, SENSOR_RESET_NOISE, fleet)

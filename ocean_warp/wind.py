@@ -64,8 +64,9 @@ class WindConfig:
         object.__setattr__(self, "profile_exponent", exponent)
         object.__setattr__(self, "seed", require_int_in_range(owner, "seed", self.seed, 0, 2**31 - 1))
 
-    def gust_model(self, dt: float) -> GustModel:
-        """The kernels' view of this config for substeps of ``dt`` [s]."""
+    def gust_model(self, dt: float, first_index: int = 0) -> GustModel:
+        """The kernels' view of this config for substeps of ``dt`` [s]; ``first_index``: the random-stream
+        number of the batch's first environment (see ``GustModel.first_index``)."""
         gusts = GustModel()
         gusts.speed_decay = math.exp(-dt / self.gust_speed_time)
         gusts.speed_noise = self.gust_speed_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_speed_time))
@@ -74,6 +75,7 @@ class WindConfig:
         gusts.profile_exponent = self.profile_exponent
         gusts.reference_height = self.reference_height
         gusts.seed = self.seed
+        gusts.first_index = int(first_index)
         return gusts
 
 
@@ -81,8 +83,10 @@ class Wind:
     """Device arrays of the wind over ``count`` environments and the model that updates them every
     substep (pass it among a Simulator's models, before the models that read it)."""
 
-    def __init__(self, config: WindConfig | None = None, count: int = 1, *, substep: float, device=None):
-        """``count`` environments updated every ``substep`` [s] (the Simulator's dt / substeps)."""
+    def __init__(self, config: WindConfig | None = None, count: int = 1, *, substep: float, device=None,
+                 first_index: int = 0):
+        """``count`` environments updated every ``substep`` [s] (the Simulator's dt / substeps);
+        ``first_index``: the random-stream number of the first one (see ``GustModel.first_index``)."""
         self.config = config if config is not None else WindConfig()
         self.device = wp.get_device(device)
         self.count = int(count)
@@ -102,7 +106,8 @@ class Wind:
         self.velocity = wp.array(initial.astype(np.float32), dtype=wp.vec3, device=self.device)
         """(N,) wind vector at the reference height, world frame [m/s]."""
         self._counter = wp.zeros(1, dtype=int, device=self.device)
-        self.gusts = self.config.gust_model(require_positive("Wind", "substep", substep, unit=" [s]"))
+        self.gusts = self.config.gust_model(require_positive("Wind", "substep", substep, unit=" [s]"),
+                                            require_int_in_range("Wind", "first_index", first_index, 0, 2**30))
 
     def substep(self, simulator) -> None:
         wp.launch(update_wind, dim=self.count, device=self.device,

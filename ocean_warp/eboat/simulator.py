@@ -88,17 +88,18 @@ class _PointBuoyancyModel:
                   outputs=[fleet.model_wrench])
 
 
-def _fleet(eboat: EBoat, config: EBoatSimulatorConfig, count: int, device) -> tuple[Fleet, np.ndarray]:
+def _fleet(eboat: EBoat, config: EBoatSimulatorConfig, count: int, device,
+           first_boat: int = 0) -> tuple[Fleet, np.ndarray]:
     """The fleet, and each boat's factor on mass and inertia: one boat type without mass variation, else
     ``config.mass_variants`` types (mass and inertia about the centre of mass scaled; centre of mass,
-    added mass, damping and the hull shared), boat i of type i % K."""
+    added mass, damping and the hull shared), boat i of type (first_boat + i) % K."""
     factors = config.mass_factors()
     if len(factors) == 1:
         return Fleet(eboat.boat_type, count, device=device), np.ones(count)
     base = eboat.boat_type
     variants = [dataclasses.replace(base, mass=base.mass * float(f), inertia=base.inertia * float(f),
                                     name=f"{base.name} x{f:.4g} mass") for f in factors]
-    types = np.arange(count) % len(factors)
+    types = (first_boat + np.arange(count)) % len(factors)
     return Fleet(variants, types=types, device=device), factors[types]
 
 
@@ -123,9 +124,12 @@ class EBoatSimulator:
     """
 
     def __init__(self, config: EBoatSimulatorConfig | None = None, count: int = 1, *, device=None,
-                 ocean: Ocean | None = None):
+                 ocean: Ocean | None = None, first_boat: int = 0):
         """``config`` (default: still water, 5 m/s steady wind, the V-C boat); ``count`` boats; ``ocean``: an
-        existing :class:`Ocean` to share instead of building ``config.ocean`` (its gravity must match)."""
+        existing :class:`Ocean` to share instead of building ``config.ocean`` (its gravity must match);
+        ``first_boat``: this batch is boats [first_boat, first_boat + count) of a larger one with the same
+        config: each boat gets that boat's mass variant and its gust and sensor-noise random streams (a
+        shard of a batch, as ``ocean_warp.envs.sharded`` runs one per process, sails like the batch)."""
         self.config = config if config is not None else EBoatSimulatorConfig()
         if not isinstance(self.config, EBoatSimulatorConfig):
             raise ValueError(f"EBoatSimulator: config must be an EBoatSimulatorConfig, got {self.config!r}")
@@ -136,15 +140,16 @@ class EBoatSimulator:
         self.eboat = EBoat(config.boat)
         if ocean is None:
             ocean = Ocean(config.ocean, device=device)
-        self.fleet, mass_scale = _fleet(self.eboat, config, count, device)
+        self.first_boat = require_int_in_range("EBoatSimulator", "first_boat", first_boat, 0, 2**30)
+        self.fleet, mass_scale = _fleet(self.eboat, config, count, device, self.first_boat)
         self.mass_scale = mass_scale
         """(N,) float64 numpy: each boat's factor on the E-Boat's mass and inertia about its centre of mass,
         fixed for the simulator's life: all 1 without ``config.mass_variation``, else boat i has
-        ``config.mass_factors()[i % K]`` (its BoatType: ``fleet.boat_types[i % K]``)."""
-        self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device)
+        ``config.mass_factors()[(first_boat + i) % K]`` (its BoatType: ``fleet.boat_types[(first_boat + i) % K]``)."""
+        self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device, first_index=self.first_boat)
         self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water_density, device=device)
         self.sensors = Sensors(config.sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
-                               gravity=config.gravity, device=device)
+                               gravity=config.gravity, device=device, first_index=self.first_boat)
         models = [self.wind]
         if config.boat.hydrostatics is Hydrostatics.POINTS:
             models.append(_PointBuoyancyModel(self.eboat, device, config.hydrodynamics))
