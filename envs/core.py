@@ -35,7 +35,7 @@ from .task_kernels import (
 )
 from .tasks import ObservationSet, TaskConfig
 
-__all__ = ["SailingEnv", "EnvBuffers", "environment_origins"]
+__all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "episode_log"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -105,13 +105,18 @@ class SailingEnv:
 
     num_actions = 3
 
-    def __init__(self, task: TaskConfig, num_envs: int, *, device=None, seed: int = 0):
+    def __init__(self, task: TaskConfig, num_envs: int, *, device=None, seed: int = 0, first_env: int = 0):
+        """``first_env``: this batch is environments [first_env, first_env + num_envs) of a larger one with
+        the same task and seed, and sails exactly as they would there: their origins, start draws, mass
+        variants, gusts and sensor noise (a shard of a batch; ``ocean_warp.envs.sharded`` runs one per
+        process)."""
         if not isinstance(task, TaskConfig):
             raise ValueError(f"SailingEnv: task must be a TaskConfig (WaypointConfig, ...), got {task!r}")
         self.task = task
         self.num_envs = require_int_in_range("SailingEnv", "num_envs", num_envs, 1, 2**24)
         self.seed = require_int_in_range("SailingEnv", "seed", seed, 0, 2**31 - 1)
-        self.simulator = EBoatSimulator(task.simulator, self.num_envs, device=device)
+        self.first_env = require_int_in_range("SailingEnv", "first_env", first_env, 0, 2**24)
+        self.simulator = EBoatSimulator(task.simulator, self.num_envs, device=device, first_boat=self.first_env)
         self.device = self.simulator.device
         self.torch_device = torch.device(wp.device_to_torch(self.device))
         self.num_policy_obs = POLICY_OBS[ObservationSet(task.observation).value]
@@ -125,8 +130,8 @@ class SailingEnv:
         n, device = self.num_envs, self.device
         zeros = lambda shape, dtype=float: wp.zeros(shape, dtype=dtype, device=device)  # noqa: E731
         self._seed = wp.array([self.seed], dtype=int, device=device)
-        self.origin = wp.array(environment_origins(n, task.simulator.ocean.tile_size, task.ocean_spacing),
-                               dtype=wp.vec3, device=device)
+        origins = environment_origins(self.first_env + n, task.simulator.ocean.tile_size, task.ocean_spacing)
+        self.origin = wp.array(origins[self.first_env:], dtype=wp.vec3, device=device)
         route = np.zeros((n, task.route_length, 3), dtype=np.float32)
         if task.route is not None:
             route[:, :, :2] = np.array(task.route, dtype=np.float32)
@@ -227,7 +232,7 @@ class SailingEnv:
     def _start_episodes(self, mask: wp.array) -> None:
         start = self.simulator.start
         wp.launch(draw_starts, dim=self.num_envs, device=self.device,
-                  inputs=[self.parameters, self.start_distribution, self._seed, mask, self.origin],
+                  inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self.origin],
                   outputs=[self.episode_count, self.route, self.target_index, self.leg_start, self.previous_distance,
                            self.last_action, self.episode_length, self.episode_return, self.target_world,
                            start.position, start.orientation, start.velocity, start.sheet, start.wind_speed,
@@ -254,24 +259,8 @@ class SailingEnv:
             wp.copy(self.final_critic_obs, self.critic_obs)
 
     def episode_log(self) -> dict[str, torch.Tensor]:
-        """Statistics of the episodes that ended in the last step (one host synchronisation to find
-        them): mean return and length, the rates of success and of each simulator flag, and how many
-        ended. Keys start with "/" (rsl-rl's namespace convention)."""
-        b = self.buffers
-        ended = torch.nonzero(b.done, as_tuple=False).squeeze(1)
-        status = b.final_status.index_select(0, ended)
-        log = {
-            "/episode/return": b.final_return.index_select(0, ended),
-            "/episode/length": b.final_length.index_select(0, ended).float(),
-            "/episode/success_rate": b.final_success.index_select(0, ended),
-            "/episode/waypoints": b.final_waypoints.index_select(0, ended).float(),
-            "/episode/time_out_rate": b.time_out.index_select(0, ended).float(),
-        }
-        for name, bit in (("capsized", BoatStatus.CAPSIZED), ("nonfinite", BoatStatus.NONFINITE),
-                          ("sunk", BoatStatus.SUNK), ("flying", BoatStatus.FLYING), ("bad_input", BoatStatus.BAD_INPUT)):
-            log[f"/episode/{name}_rate"] = ((status & bit) != 0).float()
-        log["/episode/ended"] = ended.numel() * torch.ones((), device=b.done.device)
-        return log
+        """Statistics of the episodes that ended in the last step, see :func:`episode_log`."""
+        return episode_log(self.buffers)
 
     def _start_height(self) -> float:
         if self.task.start_height is not None:
@@ -279,6 +268,26 @@ class SailingEnv:
         if self.task.simulator.boat.hydrostatics is Hydrostatics.POINTS:
             return 0.0
         return self.simulator.eboat.rest_height("cpu", self.task.simulator.hydrodynamics)
+
+
+def episode_log(b: EnvBuffers) -> dict[str, torch.Tensor]:
+    """Statistics of the episodes that ended in the last step (one host synchronisation to find them),
+    from an env's ``buffers``: mean return and length, the rates of success and of each simulator flag,
+    and how many ended. Keys start with "/" (rsl-rl's namespace convention)."""
+    ended = torch.nonzero(b.done, as_tuple=False).squeeze(1)
+    status = b.final_status.index_select(0, ended)
+    log = {
+        "/episode/return": b.final_return.index_select(0, ended),
+        "/episode/length": b.final_length.index_select(0, ended).float(),
+        "/episode/success_rate": b.final_success.index_select(0, ended),
+        "/episode/waypoints": b.final_waypoints.index_select(0, ended).float(),
+        "/episode/time_out_rate": b.time_out.index_select(0, ended).float(),
+    }
+    for name, bit in (("capsized", BoatStatus.CAPSIZED), ("nonfinite", BoatStatus.NONFINITE),
+                      ("sunk", BoatStatus.SUNK), ("flying", BoatStatus.FLYING), ("bad_input", BoatStatus.BAD_INPUT)):
+        log[f"/episode/{name}_rate"] = ((status & bit) != 0).float()
+    log["/episode/ended"] = ended.numel() * torch.ones((), device=b.done.device)
+    return log
 
 
 def _task_parameters(task: TaskConfig) -> TaskParameters:

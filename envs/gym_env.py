@@ -23,6 +23,7 @@ from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
 from .core import SailingEnv
+from .sharded import ShardedSailingEnv
 from .registration import make_task_config
 
 __all__ = ["SailingVectorEnv", "SailingEnvSingle", "action_space", "observation_space", "to_numpy", "as_actions",
@@ -82,8 +83,9 @@ class SailingVectorEnv(gym.vector.VectorEnv):
         self._attach(build_sailing_env(task, num_envs, device, seed, max_episode_steps, task_overrides))
 
     @classmethod
-    def from_env(cls, env: SailingEnv) -> SailingVectorEnv:
-        """Present an existing SailingEnv (not copied) as a vector env."""
+    def from_env(cls, env: SailingEnv | ShardedSailingEnv) -> SailingVectorEnv:
+        """Present an existing SailingEnv, or anything with its face (a ShardedSailingEnv), as a vector env
+        (not copied); :meth:`close` closes it where it has something to release."""
         vector_env = cls.__new__(cls)
         vector_env._attach(env)
         return vector_env
@@ -98,6 +100,11 @@ class SailingVectorEnv(gym.vector.VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._device = torch.device(env.torch_device)
+
+    def close_extras(self, **kwargs: Any) -> None:
+        """Close the env where it has something to release (a ShardedSailingEnv's workers)."""
+        if callable(close := getattr(self.env, "close", None)):
+            close()
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
               ) -> tuple[np.ndarray, dict[str, Any]]:

@@ -18,6 +18,7 @@ from rsl_rl.env import VecEnv
 from tensordict import TensorDict
 
 from .core import SailingEnv
+from .sharded import ShardedSailingEnv
 
 __all__ = ["RslRlVecEnv"]
 
@@ -35,10 +36,11 @@ class RslRlVecEnv(VecEnv):
     of timed-out envs and averages the log tensors. The runner never calls :meth:`reset`.
 
     Args:
-        env: the batched simulator to present; the adapter holds it, it does not copy it.
+        env: the batched simulator to present, a SailingEnv or anything with its face (a
+            ShardedSailingEnv); the adapter holds it, it does not copy it.
     """
 
-    def __init__(self, env: SailingEnv) -> None:
+    def __init__(self, env: SailingEnv | ShardedSailingEnv) -> None:
         self.env = env
         self.num_envs = env.num_envs
         self.num_actions = env.num_actions
@@ -133,4 +135,7 @@ class RslRlVecEnv(VecEnv):
         return self._snapshot(), {}
 
     def close(self) -> None:
-        """Nothing to release: the simulator's memory goes with the object."""
+        """Close the env where it has something to release (a ShardedSailingEnv's workers); a SailingEnv's
+        memory goes with the object."""
+        if callable(close := getattr(self.env, "close", None)):
+            close()

@@ -2,6 +2,7 @@
 checkpoints that resume bit for bit, a sea-state curriculum, and the exported policy at the end.
 
     ocean-warp train --task EBoatWaypoint-v0 --device cpu --minutes 20
+    ocean-warp train --task EBoatWaypoint-v0 --device cpu --workers 8 --num-envs 512
     ocean-warp train --task EBoatMission-v0 --device cuda --iterations 250 --run-name h100
     ocean-warp train --task EBoatMission-v0 --resume runs/EBoatMission-v0/<date>_<name>/model_99.pt
 
@@ -42,6 +43,7 @@ from .agents import TrainConfig, agent_config
 from .core import SailingEnv
 from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
 from .rsl_rl_env import RslRlVecEnv
+from .sharded import ShardedSailingEnv
 
 __all__ = ["train", "TrainResult", "apply_overrides", "main"]
 
@@ -155,7 +157,7 @@ def _default_run_dir(task: str, run_name: str | None, root: str) -> str:
 def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: str | None = None,
           run_name: str | None = None, runs_root: str = "runs", num_envs: int | None = None,
           iterations: int | None = None, minutes: float | None = None, resume: str | None = None,
-          progress: bool = True) -> TrainResult:
+          progress: bool = True, workers: int = 1) -> TrainResult:
     """Train a policy with rsl-rl PPO.
 
     Args:
@@ -170,6 +172,9 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
         resume: a training checkpoint (``model_<it>.pt``) to continue from: networks, optimiser, torch
             random state, curriculum; the next iteration is the one after it.
         progress: show a progress bar.
+        workers: processes that simulate the environments, each a shard of them on a core of its own
+            (a :class:`ShardedSailingEnv`, CPU only; the same results as 1, the default, for the same
+            seed).
 
     Returns:
         a :class:`TrainResult`.
@@ -184,6 +189,7 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
         raise ValueError(f"iterations must be >= 1, got {iterations}")
     if minutes is not None and not (math.isfinite(minutes) and minutes > 0):
         raise ValueError(f"minutes must be a positive number, got {minutes}")
+    _check_workers(workers, device, num_envs)
 
     checkpoint = None
     if resume is not None:
@@ -193,12 +199,15 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
             run_dir = os.path.dirname(os.path.abspath(resume))
     run_dir = run_dir or _default_run_dir(config.task, run_name, runs_root)
     os.makedirs(run_dir, exist_ok=True)
-    resolved = {"task": config.task, "device": device, "seed": seed, "num_envs": num_envs,
+    resolved = {"task": config.task, "device": device, "seed": seed, "num_envs": num_envs, "workers": workers,
                 "train_config": _jsonable(config)}
     _write_json(os.path.join(run_dir, "config.json"), resolved)
 
     torch.manual_seed(seed)
-    env = SailingEnv(config.train_task, num_envs, device=device, seed=seed)
+    if workers > 1:
+        env = ShardedSailingEnv(config.train_task, num_envs, workers=workers, seed=seed)
+    else:
+        env = SailingEnv(config.train_task, num_envs, device=device, seed=seed)
     vec = RslRlVecEnv(env)
     buffers = env.buffers
     full_budget = torch.zeros(num_envs, dtype=torch.bool, device=vec.device)
@@ -292,6 +301,7 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
             if out_of_time:
                 break
     finally:
+        vec.close()  # a ShardedSailingEnv's workers stop here, also on Ctrl-C
         if bar is not None:
             bar.close()
         with contextlib.redirect_stdout(io.StringIO()):
@@ -329,6 +339,16 @@ def _check_resumable(checkpoint: dict, config: TrainConfig, path: str) -> None:
     if checkpoint["actor_config"] != config.ppo.actor_config():
         raise CheckpointError(f"checkpoint {path!r} has actor {checkpoint['actor_config']}, but this run builds "
                               f"{config.ppo.actor_config()}")
+
+
+def _check_workers(workers: int, device: str, num_envs: int) -> None:
+    """``workers`` must be a whole number from 1 to ``num_envs``, and 1 on a CUDA device (one GPU
+    simulates every environment in one process)."""
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= num_envs:
+        raise ValueError(f"workers must be a whole number from 1 to num_envs ({num_envs}), got {workers!r}")
+    if workers > 1 and device != "cpu":
+        raise ValueError(f"workers {workers} shards the environments over CPU processes; on {device} use "
+                         "workers 1 (the GPU simulates every environment in one process)")
 
 
 def _resolve_device(device: str) -> str:
@@ -419,6 +439,9 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--set", dest="overrides", action="append", default=[], metavar="FIELD=VALUE",
                         help="change a field of the task's TrainConfig, e.g. ppo.learning_rate=3e-4, "
                         "steps_per_env=32, train_task.decision_period=2.0 (repeatable)")
+    parser.add_argument("--workers", type=int, default=1,
+                        help="CPU only: simulate the environments in this many processes, one core each "
+                        "(default 1: in this process)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
@@ -433,7 +456,7 @@ def main(argv: list[str] | None = None) -> int:
             iterations = args.iterations
         result = train(config, device=args.device, seed=args.seed, run_name=args.run_name, runs_root=args.runs_root,
                        num_envs=args.num_envs, iterations=iterations, minutes=args.minutes, resume=args.resume,
-                       progress=not args.no_progress)
+                       progress=not args.no_progress, workers=args.workers)
     except (CheckpointError, ValueError) as error:
         print(f"ocean-warp train: {error}", file=sys.stderr)
         return 2
