@@ -25,7 +25,12 @@ def main(argv=None) -> None:
     args, rest = parser.parse_known_args(argv[:1])
     module_name = JOBS[args.job][0]
     module = __import__(module_name, fromlist=["main"])
-    code = module.main(argv[1:] + rest)
+    try:
+        code = module.main(argv[1:] + rest)
+    except KeyboardInterrupt:
+        # Every file is written atomically: what was written before Ctrl-C is whole, nothing is half-written.
+        print(f"ocean-warp {args.job}: interrupted; files written before it are complete", file=sys.stderr)
+        sys.exit(130)
     if code:
         sys.exit(code)
 

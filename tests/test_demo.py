@@ -72,3 +72,18 @@ def test_cli_help_and_bad_options(capsys):
         cli.main(["export-usd", "--controller", "fixed", "--actions", "2,0,0"])
     assert exit_info.value.code == 2
     assert "actions" in capsys.readouterr().err
+
+
+def test_ctrl_c_ends_a_command_with_one_line_and_code_130(monkeypatch, capsys):
+    """Ctrl-C (KeyboardInterrupt) inside any job: exit status 130 and one line on stderr, no traceback."""
+    import ocean_warp.envs.demo as demo
+
+    def interrupted(argv):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(demo, "main", interrupted)
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["demo", "--boats", "2"])
+    assert exit_info.value.code == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["ocean-warp demo: interrupted; files written before it are complete"]
