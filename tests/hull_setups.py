@@ -33,3 +33,14 @@ def quaternion_about(axis, angle: float) -> np.ndarray:
     axis = np.asarray(axis, dtype=np.float64)
     axis = axis / np.linalg.norm(axis)
     return np.concatenate([axis * np.sin(angle / 2), [np.cos(angle / 2)]])
+
+
+def settled_heights(sim, steps: int, average_over: int) -> np.ndarray:
+    """Step ``sim`` ``steps`` times; each boat's height [m] averaged over the last ``average_over`` steps
+    (the last few millimetres of bobbing averaged out)."""
+    heights = []
+    for step in range(steps):
+        sim.step()
+        if step >= steps - average_over:
+            heights.append(sim.fleet.numpy()["position"][:, 2].copy())
+    return np.mean(heights, axis=0)

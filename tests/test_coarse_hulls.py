@@ -21,7 +21,7 @@ from benchmarks.hull_fidelity import equilibrium_height, numpy_hydrostatics, tol
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull, triangle_count
 from ocean_warp.frames import roll_pitch_yaw
-from tests.hull_setups import rotation_matrix
+from tests.hull_setups import rotation_matrix, settled_heights
 
 BUDGETS = (256, 512, 1024, 2048)
 WATER_DENSITY = 1025.0
@@ -100,11 +100,7 @@ def test_coarse_hull_floats_upright_at_its_rest_height(device, budget):
     config = EBoatSimulatorConfig(boat=EBoatConfig(hull_triangles=budget), wind=ow.WindConfig(speed=0.0))
     sim = EBoatSimulator(config, 2, device=device)
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.05]])
-    heights = []
-    for step in range(400):
-        sim.step()
-        if step >= 300:  # average the last few millimetres of bobbing out
-            heights.append(sim.fleet.numpy()["position"][:, 2].copy())
+    height = settled_heights(sim, 400, average_over=100)
     state = sim.fleet.numpy()
     roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
     assert np.all(np.abs(np.degrees(roll)) < 1.0) and np.all(np.abs(np.degrees(pitch)) < 2.0)
@@ -113,6 +109,6 @@ def test_coarse_hull_floats_upright_at_its_rest_height(device, budget):
     volume = eboat.boat_type.mass / config.water_density
     settled = equilibrium_height(np.asarray(eboat.hull.vertices, np.float64), np.asarray(eboat.hull.triangles),
                                  volume, rotation_matrix(state["orientation"][0]))
-    np.testing.assert_allclose(np.mean(heights, axis=0), settled, atol=2e-3)
+    np.testing.assert_allclose(height, settled, atol=2e-3)
     assert abs(settled - eboat.rest_height()) < 0.01, "trimmed a little, near the upright rest height"
     assert math.isfinite(settled)

@@ -12,7 +12,7 @@ from ocean_warp.eboat.mass_properties import eboat_mass_properties
 from ocean_warp.eboat.sheet import LINKS, Version
 from ocean_warp.frames import roll_pitch_yaw
 from tests import reference_hull
-from tests.hull_setups import rotation_matrix
+from tests.hull_setups import rotation_matrix, settled_heights
 
 # The sheet's link table, typed in again: mass [kg] of every link of eboat4 (V-B, V-C).
 SHEET_MASSES = {"hull": 83.69, "keel": 40.04, "mast": 12.5, "boom": 2.41, "sail": 2.22, "rudder": 1.60, "deck": 4.66,
@@ -131,12 +131,7 @@ def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics):
     eboat = EBoat(EBoatConfig(hydrostatics=hydrostatics))
     sim = EBoatSimulator(EBoatSimulatorConfig(boat=eboat.config, wind=ow.WindConfig(speed=0.0)), 2, device=device)
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.1]])
-    heights = []
-    for step in range(500):
-        sim.step()
-        if step >= 400:  # average the last few centimetres of bobbing out
-            heights.append(sim.fleet.numpy()["position"][:, 2].copy())
-    height = np.mean(heights, axis=0)
+    height = settled_heights(sim, 500, average_over=100)
     state = sim.fleet.numpy()
     roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
     assert np.all(np.abs(np.degrees(roll)) < 1.0) and np.all(np.abs(np.degrees(pitch)) < 2.0)

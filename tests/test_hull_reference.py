@@ -5,13 +5,16 @@ import dataclasses
 import math
 
 import numpy as np
+import pytest
 
 import ocean_warp as ow
 from tests import reference_hull
 from tests.hull_setups import random_rotations, rotation_matrix
 
 
-def test_hull_wrenches_match_numpy_reference(device, rng):
+@pytest.mark.parametrize("falloffs", ["random", "special"])
+def test_hull_wrenches_match_numpy_reference(device, rng, falloffs):
+    """``falloffs``: random exponents of the drag's cos t, or 0.5 and 1, which the kernel takes without pow."""
     hulls = [ow.Hull.box(float(rng.uniform(1, 4)), float(rng.uniform(0.5, 2)), float(rng.uniform(0.4, 1.2)),
                          subdivisions=1),
              ow.Hull.ellipsoid(*rng.uniform(0.3, 1.5, size=3), subdivisions=2)]
@@ -27,8 +30,8 @@ def test_hull_wrenches_match_numpy_reference(device, rng):
     hydro = dataclasses.replace(
         ow.HydrodynamicsConfig(), pressure_drag_linear=float(rng.uniform(0, 300)),
         pressure_drag_quadratic=float(rng.uniform(0, 900)), suction_linear=float(rng.uniform(0, 300)),
-        suction_quadratic=float(rng.uniform(0, 900)), pressure_drag_falloff=float(rng.uniform(0.2, 2)),
-        suction_falloff=float(rng.uniform(0.2, 2)))
+        suction_quadratic=float(rng.uniform(0, 900)), pressure_drag_falloff=float(rng.uniform(0.2, 2)) if falloffs == "random" else 0.5,
+        suction_falloff=float(rng.uniform(0.2, 2)) if falloffs == "random" else 1.0)
     positions = np.column_stack([rng.uniform(-200, 200, size=(count, 2)), rng.uniform(-0.8, 0.4, size=count)])
     orientations = random_rotations(rng, count, max_angle=math.pi)
     velocities = np.concatenate([rng.uniform(-3, 3, size=(count, 3)), rng.uniform(-1, 1, size=(count, 3))], axis=1)
