@@ -75,7 +75,8 @@ def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
     # float32 rounding differs between the mirror images and grows over 8 s (seed 1161472301: 2.9e-3 rad of yaw)
     np.testing.assert_allclose(angles[1], angles[0] * [-1, 1, -1], atol=5e-3)
     travelled = state["position"] - [[0, 5.0, 0], [40, -5.0, 0]]
-    np.testing.assert_allclose(travelled[1], travelled[0] * [1, -1, 1], atol=1e-2)  # 5.3 mm of 7.5 m there
+    # The same rounding drift, in position: 12 mm of 8.1 m with rng seed 50; a real asymmetry is metres.
+    np.testing.assert_allclose(travelled[1], travelled[0] * [1, -1, 1], atol=2e-3 * np.linalg.norm(travelled[0]))
     np.testing.assert_allclose(sim.state.boom_angle.numpy()[1], -sim.state.boom_angle.numpy()[0], atol=2e-3)
 
 
