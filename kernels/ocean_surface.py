@@ -18,6 +18,7 @@ __all__ = [
     "periodic_bilinear",
     "undisplaced_position",
     "undisplaced_position_near",
+    "inverted_displacement",
     "height_velocity_at_grid",
     "surface_height",
     "surface_height_velocity",
@@ -40,10 +41,9 @@ class OceanSurface:
     choppiness: float
     """Scale of the horizontal displacement."""
     inversion_iterations: int
-    """Fixed-point iterations of :func:`undisplaced_position` (0 when choppiness is 0)."""
-    nearby_iterations: int
-    """Fixed-point iterations of :func:`undisplaced_position_near`, which starts from a nearby point's
-    solution (0 when choppiness is 0)."""
+    """Most fixed-point iterations of :func:`inverted_displacement` (0 when choppiness is 0)."""
+    inversion_tolerance_sq: float
+    """Square of the step [m^2] below which :func:`inverted_displacement` stops."""
 
 
 @wp.func
@@ -71,25 +71,35 @@ def periodic_bilinear(surface: OceanSurface, field: int, xy: wp.vec2) -> wp.vec2
 
 
 @wp.func
-def undisplaced_position(surface: OceanSurface, xy: wp.vec2) -> wp.vec2:
-    """The grid position q [m] whose displaced position q + choppiness * D(q) is ``xy`` [m]."""
-    q = xy
+def inverted_displacement(surface: OceanSurface, xy: wp.vec2, start: wp.vec2) -> wp.vec2:
+    """The grid position q [m] whose displaced position q + choppiness * D(q) is ``xy`` [m], by the
+    fixed-point iteration q <- xy - choppiness * D(q) from ``start`` [m]. Each iteration shrinks the error
+    by about choppiness * |grad D|, which a steep sea at choppiness 1 brings to about 0.4, so the loop stops
+    once a step moves q less than the tolerance (the error left is then about as small), or after
+    ``inversion_iterations``."""
+    q = start
     for _ in range(surface.inversion_iterations):
         displacement = periodic_bilinear(surface, FIELD_DISPLACEMENT, q)
-        q = xy - surface.choppiness * wp.vec2(displacement[0], displacement[1])
+        next_q = xy - surface.choppiness * wp.vec2(displacement[0], displacement[1])
+        step = next_q - q
+        q = next_q
+        if wp.dot(step, step) < surface.inversion_tolerance_sq:
+            break
     return q
+
+
+@wp.func
+def undisplaced_position(surface: OceanSurface, xy: wp.vec2) -> wp.vec2:
+    """The grid position q [m] whose displaced position is ``xy`` [m], started from ``xy`` itself."""
+    return inverted_displacement(surface, xy, xy)
 
 
 @wp.func
 def undisplaced_position_near(surface: OceanSurface, xy: wp.vec2, shift: wp.vec2) -> wp.vec2:
     """:func:`undisplaced_position` of ``xy`` [m], started from ``xy - shift`` where ``shift`` [m] is
-    choppiness * D at a nearby point (``p - undisplaced_position(p)``). D varies little over a boat's
-    length, so the start is already close and ``nearby_iterations`` contractions suffice."""
-    q = xy - shift
-    for _ in range(surface.nearby_iterations):
-        displacement = periodic_bilinear(surface, FIELD_DISPLACEMENT, q)
-        q = xy - surface.choppiness * wp.vec2(displacement[0], displacement[1])
-    return q
+    choppiness * D at a nearby point (``p - undisplaced_position(p)``). On a sea whose displacement varies
+    little over a boat's length the start is already close, and the iteration stops after one or two steps."""
+    return inverted_displacement(surface, xy, xy - shift)
 
 
 @wp.func

@@ -104,7 +104,7 @@ class Ocean:
         self.surface.choppiness = self.config.choppiness
         choppy = self.config.choppiness > 0
         self.surface.inversion_iterations = self.config.inversion_iterations if choppy else 0
-        self.surface.nearby_iterations = self.config.nearby_inversion_iterations if choppy else 0
+        self.surface.inversion_tolerance_sq = self.config.inversion_tolerance**2
 
         self._loop_period = wp.float64(self.config.loop_period or 0.0)
         self._along_y = spectra_along_y_kernel(n)

@@ -38,7 +38,7 @@ BAD_VALUES = [
     ("seed", 1.5, r"seed must be an integer"),
     ("gravity", 0.0, r"gravity must be > 0"),
     ("inversion_iterations", 100, r"inversion_iterations must be an integer in \[0, 32\]"),
-    ("nearby_inversion_iterations", -1, r"nearby_inversion_iterations must be an integer in \[0, 32\]"),
+    ("inversion_tolerance", 0.0, r"inversion_tolerance must be > 0 \[m\]"),
     ("loop_period", 0.0, r"loop_period must be > 0 \[s\] or None"),
     ("loop_period", -30.0, r"loop_period must be > 0"),
     ("loop_period", math.inf, r"loop_period must be a finite number > 0"),
