@@ -60,7 +60,7 @@ def time_step(sim: EBoatSimulator) -> float:
         for _ in range(3):
             sim.step()
         wp.synchronize_device(device)
-        return median_seconds_warp_graph(sim.simulator._graph, device, batches=7, per_batch=10)
+        return median_seconds_warp_graph(sim.simulator.step_graph, device, batches=7, per_batch=10)
     sim.step()  # compiles the kernels; a CPU step of 64k boats takes about a minute, so time single steps
     return median_seconds_host(sim.step, batches=3, per_batch=1, sync=lambda: wp.synchronize_device(device))
 

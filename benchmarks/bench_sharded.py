@@ -40,11 +40,13 @@ def cpu_count() -> int:
     return os.cpu_count() or 1
 
 
-def task_for(hull: str) -> WaypointConfig:
-    """The seed waypoint task (its gentle sea, 1 s decisions of 20 x 0.05 s) on ``hull``."""
+def task_for(hull: str, capture: bool = True) -> WaypointConfig:
+    """The seed waypoint task (its gentle sea, 1 s decisions of 20 x 0.05 s) on ``hull``; ``capture``
+    False launches every kernel anew each decision instead of replaying the captured decision."""
     base = WaypointConfig()
     boat = dataclasses.replace(base.simulator.boat, hydrostatics=HULLS[hull])
-    return dataclasses.replace(base, simulator=dataclasses.replace(base.simulator, boat=boat))
+    simulator = dataclasses.replace(base.simulator, boat=boat, capture_graph=capture)
+    return dataclasses.replace(base, simulator=simulator)
 
 
 def time_decisions(env, seconds: float, seed: int) -> float:
@@ -65,9 +67,9 @@ def time_decisions(env, seconds: float, seed: int) -> float:
     return count * env.num_envs / (time.perf_counter() - started)
 
 
-def measure(hull: str, workers: int | None, num_envs: int, seconds: float, seed: int) -> float:
+def measure(hull: str, workers: int | None, num_envs: int, seconds: float, seed: int, capture: bool = True) -> float:
     """Decisions per second for ``hull`` with ``workers`` processes (None: one SailingEnv in this process)."""
-    task = task_for(hull)
+    task = task_for(hull, capture)
     if workers is None:
         return time_decisions(SailingEnv(task, num_envs, device="cpu", seed=seed), seconds, seed)
     with ShardedSailingEnv(task, num_envs, workers=workers, seed=seed) as env:
@@ -95,6 +97,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--hull", default="points,mesh", help="comma-separated: points, mesh (default both)")
     parser.add_argument("--seconds", type=float, default=3.0, help="wall time per configuration [s] (default 3)")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--uncaptured", action="store_true",
+                        help="launch every kernel anew each decision (no captured graph), for comparison")
     args = parser.parse_args(argv)
     hulls = parse_list(args.hull)
     if bad := [hull for hull in hulls if hull not in HULLS]:
@@ -112,6 +116,7 @@ def main(argv: list[str] | None = None) -> int:
           f"(os.cpu_count() = {os.cpu_count()}); Python {platform.python_version()}, torch {torch.__version__}, "
           f"Warp {wp.__version__}")
     print(describe(task_for(hulls[0])))
+    print(f"- each decision {'launched kernel by kernel' if args.uncaptured else 'replayed from its capture'}")
     if skipped:
         print(f"- skipped worker counts above the {cores} usable cores (or the env count): {skipped}")
     print(f"- timed for about {args.seconds:g} s per row after a warm-up decision; worker start-up not timed\n")
@@ -119,9 +124,10 @@ def main(argv: list[str] | None = None) -> int:
     print("|---|---|---:|---:|---:|---:|---:|")
     period = task_for(hulls[0]).decision_period
     for hull in hulls:
-        baseline = measure(hull, None, args.num_envs, args.seconds, args.seed)
+        capture = not args.uncaptured
+        baseline = measure(hull, None, args.num_envs, args.seconds, args.seed, capture)
         rows = [("1 process (SailingEnv)", 1, baseline)]
-        rows += [("sharded", w, measure(hull, w, args.num_envs, args.seconds, args.seed)) for w in workers]
+        rows += [("sharded", w, measure(hull, w, args.num_envs, args.seconds, args.seed, capture)) for w in workers]
         for setup, count, rate in rows:
             speedup = rate / baseline
             print(f"| {hull} | {setup} | {count} | {rate:,.0f} | {rate * period:,.0f} | {speedup:.2f}x | "

@@ -3,8 +3,8 @@
 A step runs, on the simulator's device: the actions to actuator commands, ``steps_per_decision``
 physics steps, the reward and episode-end kernel, the observation kernel (the final observations),
 a start drawn for every environment that ended, the simulator's masked reset of exactly those, and the
-observation kernel again (what the policy sees next). On CUDA all of it is one captured graph; nothing
-in it allocates or waits for the host. The results are Warp arrays that torch reads through views
+observation kernel again (what the policy sees next). All of it is one captured graph, on CUDA and on
+the CPU (``ocean_warp.replay``); nothing in it allocates or waits for the host. The results are Warp arrays that torch reads through views
 bound in the constructor (``env.buffers``).
 """
 
@@ -20,6 +20,7 @@ import warp as wp
 
 from ocean_warp.eboat import EBoatSimulator, Hydrostatics
 from ocean_warp.fleet import BoatStatus
+from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
@@ -172,7 +173,8 @@ class SailingEnv:
             final_length=view(self.final_length), final_success=view(self.final_success),
             final_status=view(self.final_status), final_waypoints=view(self.final_waypoints))
         """torch views of the results, bound once (see :class:`EnvBuffers`)."""
-        self._graph = None
+        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
+                                                   capture=self.task.simulator.capture_graph)
         self.reset()
 
     # --- the decision step ------------------------------------------------------------------------
@@ -186,14 +188,7 @@ class SailingEnv:
                                  f"got {tuple(actions.shape)}")
             self.buffers.actions.copy_(actions)
         with ordered_with_torch(self.device):
-            if not (self.device.is_cuda and self.task.simulator.capture_graph):
-                self._launch_decision()
-            else:
-                if self._graph is None:
-                    with wp.ScopedCapture(device=self.device) as capture:
-                        self._launch_decision()
-                    self._graph = capture.graph
-                wp.capture_launch(self._graph)
+            self._replayed_decision()
 
     def _launch_decision(self) -> None:
         self.launch_actions()

@@ -62,6 +62,7 @@ import warp as wp
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.fleet import BoatStatus
 from ocean_warp.frames import roll_pitch_yaw
+from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
 from .autopilot import AutopilotConfig, SailingAutopilot
@@ -294,8 +295,8 @@ class FleetController:
 
 
 class RecordedDecision:
-    """One decision of ``env``, launched as ``SailingEnv.step`` launches it (and, on CUDA, captured as one
-    graph likewise), with each boat's pose copied out after the physics and before the task's kernels
+    """One decision of ``env``, launched as ``SailingEnv.step`` launches it (and captured as one graph
+    likewise), with each boat's pose copied out after the physics and before the task's kernels
     restart the runs that ended: ``env.step()`` keeps no pose from before that reset, and the last
     decision of a run is where it reached its last waypoint, capsized or was lost. A test checks that it
     stays step for step the same as ``env.step()``.
@@ -326,7 +327,7 @@ class RecordedDecision:
         """(F * N,) boom angles [rad], positive to port."""
         self.frame_rudder_angle = wp.zeros(frames, dtype=wp.float32, device=device)
         """(F * N,) rudder angles [rad], positive turns to port."""
-        self._graph = None
+        self._replayed = ReplayedLaunches(self._launch, device, capture=env.task.simulator.capture_graph)
 
     def _launch(self) -> None:
         env, state = self.env, self.env.simulator.state
@@ -346,16 +347,8 @@ class RecordedDecision:
         env.launch_task()
 
     def __call__(self) -> None:
-        env = self.env
-        with ordered_with_torch(env.device):
-            if not (env.device.is_cuda and env.task.simulator.capture_graph):
-                self._launch()
-                return
-            if self._graph is None:
-                with wp.ScopedCapture(device=env.device) as capture:
-                    self._launch()
-                self._graph = capture.graph
-            wp.capture_launch(self._graph)
+        with ordered_with_torch(self.env.device):
+            self._replayed()
 
     def frames(self) -> dict[str, np.ndarray]:
         """The last decision's frames on the host: "position" (F, N, 3) [m], "orientation" (F, N, 4) xyzw,

@@ -12,6 +12,7 @@ from .hydrodynamics_config import HydrodynamicsConfig
 from .kernels.hull_forces import WaterModel, hull_wrenches_kernel, sample_origin_water
 from .kernels.rigid_body import SafetyBounds, advance_time, integrate_boats
 from .ocean import Ocean
+from .replay import ReplayedLaunches
 from .torch_streams import ordered_with_torch
 from .validation import require_in_range, require_int_in_range, require_positive
 
@@ -42,7 +43,8 @@ class SimulatorConfig:
     block_dim: int | None = None
     """Threads per boat in the hull-force pass; None: 1 on the CPU, 128 on CUDA (fastest on an H100)."""
     capture_graph: bool = True
-    """On CUDA, capture one step as a graph on the first call and replay it afterwards."""
+    """Capture one step as a graph on the first call and replay it afterwards (a CUDA graph, or Warp's
+    recorded launches on the CPU; see ``ocean_warp.replay``)."""
 
     def __post_init__(self):
         owner = "SimulatorConfig"
@@ -101,7 +103,7 @@ class Simulator:
         for model in self.models:
             if not callable(getattr(model, "substep", None)):
                 raise ValueError(f"Simulator: model {model!r} has no substep(simulator) method")
-        self._graph = None
+        self._replayed_step = ReplayedLaunches(self.launch_step, self.device, capture=self.config.capture_graph)
 
     @property
     def time(self) -> float:
@@ -159,14 +161,12 @@ class Simulator:
         """Advance ``config.dt`` seconds (asynchronous on CUDA, ordered after torch's pending work on
         the fleet's tensors and before torch's next)."""
         with ordered_with_torch(self.device):
-            if not (self.device.is_cuda and self.config.capture_graph):
-                self.launch_step()
-                return
-            if self._graph is None:
-                with wp.ScopedCapture(device=self.device) as capture:
-                    self.launch_step()
-                self._graph = capture.graph
-            wp.capture_launch(self._graph)
+            self._replayed_step()
+
+    @property
+    def step_graph(self) -> wp.Graph | None:
+        """The captured step (after the first :meth:`step`; None without capture), for benchmarks."""
+        return self._replayed_step.graph
 
 
 def _water_model(config: HydrodynamicsConfig, substep: float) -> WaterModel:

@@ -18,6 +18,7 @@ import numpy as np
 import warp as wp
 
 from ..kernels.autopilot import accumulate_course_keeping
+from ..replay import ReplayedLaunches
 from ..wind import WindConfig
 from .autopilot import HeadingAutopilot
 from .eboat import EBoatConfig
@@ -69,8 +70,9 @@ def speed_polar(*, wind_speeds=(4.0, 7.0, 10.0), wind_angles_deg=np.arange(0.0, 
     steps = int(round((settle_time + average_time) / dt))
     averaging = int(round(average_time / dt))
     sums = wp.zeros(count, dtype=wp.vec3, device=sim.device)
-    settle_step = _replayable(sim.device, lambda: _sail_step(sim, autopilot))
-    averaging_step = _replayable(sim.device, lambda: _sail_step(sim, autopilot, sums))
+    # Each a captured graph: uncaptured, a step's launches took ten times the GPU's time for the step.
+    settle_step = ReplayedLaunches(lambda: _sail_step(sim, autopilot), sim.device)
+    averaging_step = ReplayedLaunches(lambda: _sail_step(sim, autopilot, sums), sim.device)
     for step in range(steps):
         (averaging_step if step >= steps - averaging else settle_step)()
     mean_speed, heading_error, heel = (sums.numpy().astype(np.float64) / averaging).T
@@ -93,13 +95,3 @@ def _sail_step(sim: EBoatSimulator, autopilot: HeadingAutopilot, sums: wp.array 
     if sums is not None:
         wp.launch(accumulate_course_keeping, dim=sim.count, device=sim.device,
                   inputs=[autopilot.target, sim.state.orientation, sim.state.velocity], outputs=[sums])
-
-
-def _replayable(device, launches):
-    """``launches`` as a callable that replays them; on CUDA captured once as a graph, so a step costs no
-    host work (uncaptured, the launches took ten times the GPU's time for the step)."""
-    if not wp.get_device(device).is_cuda:
-        return launches
-    with wp.ScopedCapture(device=device) as capture:
-        launches()
-    return lambda: wp.capture_launch(capture.graph)

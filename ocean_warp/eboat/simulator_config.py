@@ -64,7 +64,7 @@ class EBoatSimulatorConfig:
     block_dim: int | None = None
     """Threads per boat in the hull pass; None: 1 on the CPU, 128 on CUDA."""
     capture_graph: bool = True
-    """On CUDA, capture a step as a graph on its first call and replay it."""
+    """Capture a step as a graph on its first call and replay it (on CUDA and on the CPU)."""
     mass_variation: float = 0.0
     """Domain randomisation of the boat's mass, as a fraction (0 to 0.3; 0: every boat as built). With
     v > 0 the fleet holds ``mass_variants`` boat types whose mass and inertia about the centre of mass
