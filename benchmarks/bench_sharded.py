@@ -67,23 +67,25 @@ def time_decisions(env, seconds: float, seed: int) -> float:
     return count * env.num_envs / (time.perf_counter() - started)
 
 
-def measure(hull: str, workers: int | None, num_envs: int, seconds: float, seed: int, capture: bool = True) -> float:
+def measure(hull: str, workers: int | None, num_envs: int, seconds: float, seed: int, capture: bool = True,
+            shared_ocean: bool = True) -> float:
     """Decisions per second for ``hull`` with ``workers`` processes (None: one SailingEnv in this process)."""
     task = task_for(hull, capture)
     if workers is None:
         return time_decisions(SailingEnv(task, num_envs, device="cpu", seed=seed), seconds, seed)
-    with ShardedSailingEnv(task, num_envs, workers=workers, seed=seed) as env:
+    with ShardedSailingEnv(task, num_envs, workers=workers, seed=seed, shared_ocean=shared_ocean) as env:
         return time_decisions(env, seconds, seed)
 
 
-def describe(task: WaypointConfig) -> str:
+def describe(task: WaypointConfig, shared_ocean: bool) -> str:
     """The settings the numbers depend on, as markdown lines."""
     sim, sea = task.simulator, task.simulator.ocean
     return (f"- task: seed waypoint task (EBoatWaypoint-v0's simulator, hull varied), random actions\n"
             f"- decision period {task.decision_period} s = {task.steps_per_decision} steps of dt {sim.dt} s, "
             f"substeps {sim.substeps}, ocean evaluated every substep: {sim.ocean_every_substep}\n"
             f"- sea: Hs {sea.significant_wave_height} m, Tp {sea.peak_period} s, {sea.resolution}^2 grid over "
-            f"{sea.tile_size} m (each worker computes its own copy of the ocean)")
+            f"{sea.tile_size} m ("
+            + ("evaluated once, by the parent, for every worker)" if shared_ocean else "each worker evaluates its own)"))
 
 
 def parse_list(text: str, kind=str) -> list:
@@ -99,6 +101,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--uncaptured", action="store_true",
                         help="launch every kernel anew each decision (no captured graph), for comparison")
+    parser.add_argument("--own-oceans", action="store_true",
+                        help="every worker evaluates its own ocean (no shared ocean), for comparison")
     args = parser.parse_args(argv)
     hulls = parse_list(args.hull)
     if bad := [hull for hull in hulls if hull not in HULLS]:
@@ -115,7 +119,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"- machine: {platform.processor() or platform.machine()}, {cores} usable cores "
           f"(os.cpu_count() = {os.cpu_count()}); Python {platform.python_version()}, torch {torch.__version__}, "
           f"Warp {wp.__version__}")
-    print(describe(task_for(hulls[0])))
+    print(describe(task_for(hulls[0]), not args.own_oceans))
     print(f"- each decision {'launched kernel by kernel' if args.uncaptured else 'replayed from its capture'}")
     if skipped:
         print(f"- skipped worker counts above the {cores} usable cores (or the env count): {skipped}")
@@ -127,7 +131,8 @@ def main(argv: list[str] | None = None) -> int:
         capture = not args.uncaptured
         baseline = measure(hull, None, args.num_envs, args.seconds, args.seed, capture)
         rows = [("1 process (SailingEnv)", 1, baseline)]
-        rows += [("sharded", w, measure(hull, w, args.num_envs, args.seconds, args.seed, capture)) for w in workers]
+        rows += [("sharded", w, measure(hull, w, args.num_envs, args.seconds, args.seed, capture, not args.own_oceans))
+                 for w in workers]
         for setup, count, rate in rows:
             speedup = rate / baseline
             print(f"| {hull} | {setup} | {count} | {rate:,.0f} | {rate * period:,.0f} | {speedup:.2f}x | "

@@ -15,8 +15,10 @@ parent waits for every answer. Nothing but the command and a short reply is pick
 
 Same seed, same results: observations, rewards and dones equal those of one SailingEnv bit for bit,
 for any number of workers (each shard numbers its random streams from its first environment's index).
-Each worker computes its own copy of the ocean, the same for all: with a cheap per-boat model (the
-four-point hull) that fixed cost limits how well more workers pay off (see benchmarks/RESULTS.md).
+The sea is the same for every worker, so the parent evaluates it once (``envs.shared_ocean``), one
+decision ahead, into shared memory that every worker's ocean copies from; with a cheap per-boat model
+(the four-point hull) that evaluation was most of a small shard's work. ``shared_ocean=False`` lets
+each worker evaluate its own, with the same results.
 
 Workers are started with "spawn" (Warp and torch do not survive ``fork``), ignore Ctrl-C (the parent
 decides), and exit when the parent dies. A worker that dies or raises makes the parent's next call
@@ -45,6 +47,7 @@ import warp as wp
 from ocean_warp.validation import require_int_in_range
 
 from .core import EnvBuffers, SailingEnv, episode_log
+from .shared_ocean import SharedOcean, ocean_updates_per_decision
 from .task_kernels import POLICY_OBS, PRIVILEGED_OBS
 from .tasks import ObservationSet, TaskConfig
 
@@ -83,8 +86,14 @@ def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.d
 class _Shard:
     """A worker's SailingEnv for global environments [first, first + count) and its rows of shared memory."""
 
-    def __init__(self, task: TaskConfig, shared: dict[str, torch.Tensor], first: int, count: int, seed: int):
+    def __init__(self, task: TaskConfig, shared: dict[str, torch.Tensor], first: int, count: int, seed: int,
+                 ocean_slots: torch.Tensor | None):
         self.env = SailingEnv(task, count, device="cpu", seed=seed, first_env=first)
+        self.ocean_cursor = None
+        if ocean_slots is not None:
+            self.updates_per_decision = ocean_updates_per_decision(task)
+            self.ocean_cursor = wp.zeros(1, dtype=wp.int32, device="cpu")
+            self.env.simulator.ocean.read_fields_from(wp.from_torch(ocean_slots, dtype=wp.vec2f), self.ocean_cursor)
         own = vars(self.env.buffers)
         self.rows = {name: tensor[first:first + count] for name, tensor in shared.items()}
         for name, rows in self.rows.items():
@@ -104,6 +113,8 @@ class _Shard:
         """Carry out one command from the parent; returns the reply's payload."""
         env = self.env
         if command == "step":
+            if self.ocean_cursor is not None:  # the argument: which half of the shared ocean's slots to read
+                self.ocean_cursor.fill_(argument * self.updates_per_decision)
             # The learner may have written episode lengths (rsl-rl's random episode start) since the last step.
             env.buffers.episode_length.copy_(self.rows["episode_length"])
             env.step(self.rows["actions"])
@@ -121,8 +132,8 @@ class _Shard:
         raise ValueError(f"unknown command {command!r}")
 
 
-def _worker_main(conn, shared: dict[str, torch.Tensor], task: TaskConfig, first: int, count: int, seed: int,
-                 parent_pid: int, log_level: int) -> None:
+def _worker_main(conn, shared: dict[str, torch.Tensor], ocean_slots: torch.Tensor | None, task: TaskConfig,
+                 first: int, count: int, seed: int, parent_pid: int, log_level: int) -> None:
     """A worker process: build the shard, answer with its sea's wave height, then run commands until
     "close", until the parent's end of the pipe closes or until the parent dies. An exception is sent
     back as text. Warp logs at the parent's level but at least WARNING (a banner and a line per loaded
@@ -131,7 +142,7 @@ def _worker_main(conn, shared: dict[str, torch.Tensor], task: TaskConfig, first:
     torch.set_num_threads(1)
     wp.config.log_level = max(log_level, logging.WARNING)
     try:
-        shard = _Shard(task, shared, first, count, seed)
+        shard = _Shard(task, shared, first, count, seed, ocean_slots)
         conn.send(("ok", shard.env.simulator.ocean.significant_wave_height))
         while True:
             if not conn.poll(_PARENT_POLL_S):
@@ -268,7 +279,7 @@ class _RemoteOcean:
 
     def set_significant_wave_height(self, hs: float) -> None:
         """Change every worker's sea to a significant wave height of ``hs`` [m] (see ``Ocean``)."""
-        self.significant_wave_height = self._env._command("wave_height", float(hs))[0]
+        self.significant_wave_height = self._env._set_wave_height(float(hs))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -299,11 +310,14 @@ class ShardedSailingEnv:
         workers: worker processes, 1 to num_envs; shards differ in size by at most one environment.
         seed: seed of the per-env random streams, as SailingEnv's.
         timeout: longest wait for the workers' answer to one command (building included) [s].
+        shared_ocean: evaluate the sea once, in this process, for every worker (False: every worker
+            evaluates its own; the results are the same bit for bit).
     """
 
     num_actions = SailingEnv.num_actions
 
-    def __init__(self, task: TaskConfig, num_envs: int, *, workers: int, seed: int = 0, timeout: float = 300.0):
+    def __init__(self, task: TaskConfig, num_envs: int, *, workers: int, seed: int = 0, timeout: float = 300.0,
+                 shared_ocean: bool = True):
         if not isinstance(task, TaskConfig):
             raise ValueError(f"ShardedSailingEnv: task must be a TaskConfig (WaypointConfig, ...), got {task!r}")
         self.num_envs = require_int_in_range("ShardedSailingEnv", "num_envs", num_envs, 1, 2**24)
@@ -325,18 +339,22 @@ class ShardedSailingEnv:
                   for name, (shape, dtype) in _buffer_layout(task).items()}
         self.buffers = EnvBuffers(**shared)
         """Shared-memory tensors, (N, ...) on the CPU, bound once (see :class:`EnvBuffers`)."""
+        self._ocean = SharedOcean(task) if shared_ocean else None
+        ocean_slots = self._ocean.slots if self._ocean is not None else None
 
         names = [f"worker {i} (envs {a}-{a + n - 1})" if n > 1 else f"worker {i} (env {a})"
                  for i, (a, n) in enumerate(self.shards)]
         self._pool = _WorkerPool(names)
         self._finalizer = weakref.finalize(self, self._pool.shutdown)
         context = torch.multiprocessing.get_context("spawn")
-        args = [(shared, task, first, count, self.seed, os.getpid(), wp.config.log_level)
+        args = [(shared, ocean_slots, task, first, count, self.seed, os.getpid(), wp.config.log_level)
                 for first, count in self.shards]
         try:
             self._pool.start(context, args)
             self.pids = [process.pid for process in self._pool.processes]
             heights = self._pool.gather(self.timeout)
+            if self._ocean is not None:
+                self._ocean.restart(0.0)
         except BaseException:
             self.close()
             raise
@@ -351,7 +369,11 @@ class ShardedSailingEnv:
                 raise ValueError(f"ShardedSailingEnv.step: actions must have shape ({self.num_envs}, "
                                  f"{self.num_actions}), got {tuple(actions.shape)}")
             self.buffers.actions.copy_(actions)
-        self._command("step")
+        if self._ocean is None:
+            self._command("step")
+            return
+        self._command("step", self._ocean.parity, while_waiting=self._ocean.fill_next)
+        self._ocean.advance()
 
     def reset(self, seed: int | None = None) -> None:
         """Start a new episode in every environment; with ``seed``, restart the batch from it (see
@@ -359,6 +381,18 @@ class ShardedSailingEnv:
         if seed is not None:
             self.seed = require_int_in_range("ShardedSailingEnv.reset", "seed", seed, 0, 2**31 - 1)
         self._command("reset", seed)
+        if seed is not None and self._ocean is not None:
+            self._ocean.restart(0.0)  # the workers' clocks went back to zero
+
+    def _set_wave_height(self, hs: float) -> float:
+        """Every worker's sea (and the shared ocean's) to significant wave height ``hs`` [m]; returns the
+        wave height the grid holds."""
+        if self._ocean is not None:
+            self._ocean.ocean.set_significant_wave_height(hs)  # a bad hs raises here, before any worker changes
+        height = self._command("wave_height", hs)[0]
+        if self._ocean is not None:
+            self._ocean.restart()
+        return height
 
     def episode_log(self) -> dict[str, torch.Tensor]:
         """Statistics of the episodes that ended in the last step (see :func:`ocean_warp.envs.core.episode_log`)."""
@@ -379,13 +413,16 @@ class ShardedSailingEnv:
     def __exit__(self, *exc_info) -> None:
         self.close()
 
-    def _command(self, command: str, argument: Any = None) -> list[Any]:
-        """Send one command to every worker and wait for all of them; on any failure, including Ctrl-C
-        while waiting, every worker is stopped before the exception propagates."""
+    def _command(self, command: str, argument: Any = None, while_waiting=None) -> list[Any]:
+        """Send one command to every worker and wait for all of them, calling ``while_waiting()`` in
+        between; on any failure, including Ctrl-C while waiting, every worker is stopped before the
+        exception propagates."""
         if self._pool.closed:
             raise RuntimeError("ShardedSailingEnv is closed (its workers have been stopped)")
         try:
             self._pool.send_all((command, argument))
+            if while_waiting is not None:
+                while_waiting()
             return self._pool.gather(self.timeout)
         except BaseException:
             self.close()

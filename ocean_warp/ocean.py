@@ -20,6 +20,7 @@ from .kernels.ocean_spectrum import (
     spectra_along_y_kernel,
     spectrum_cell,
 )
+from .kernels.field_slots import advance_cursor, copy_slot_fields
 from .kernels.ocean_surface import OceanSurface, sample_surface_kernel
 from . import spectra
 from .ocean_config import OceanConfig, Spectrum
@@ -109,15 +110,29 @@ class Ocean:
         self._loop_period = wp.float64(self.config.loop_period or 0.0)
         self._along_y = spectra_along_y_kernel(n)
         self._along_x = fields_along_x_kernel(n)
+        self._slots: tuple[wp.array, wp.array] | None = None
         self.update(0.0)
 
     # --- evaluation -----------------------------------------------------------------------------
-    def update(self, t: float | None = None) -> None:
+    def update(self, t: float | None = None, *, out: wp.array | None = None) -> None:
         """Evaluate all fields at time ``t`` [s] (None: at the time held in :attr:`time`). With
-        ``config.loop_period`` the fields repeat exactly: t is taken modulo the loop period.
+        ``config.loop_period`` the fields repeat exactly: t is taken modulo the loop period. ``out``: a
+        (FIELD_COUNT * n, n) vec2f array to write the fields into instead of this ocean's own (the
+        evaluating side of :meth:`read_fields_from`).
+
+        An ocean that reads its fields from slots (:meth:`read_fields_from`) copies the next slot instead.
 
         Asynchronous on CUDA. Inside a captured graph pass None and advance :attr:`time` with a
         kernel: a Python ``t`` would be frozen into the graph."""
+        if self._slots is not None and out is None:
+            if t is not None:
+                raise ValueError(f"Ocean.update: this ocean reads its fields from slots evaluated elsewhere, so it "
+                                 f"cannot evaluate t = {t!r}; update it without a time")
+            slots, cursor = self._slots
+            wp.launch(copy_slot_fields, dim=self._field_rows.shape[0], device=self.device,
+                      inputs=[slots, cursor], outputs=[self._field_rows])
+            wp.launch(advance_cursor, dim=1, device=self.device, inputs=[cursor])
+            return
         if t is not None:
             if isinstance(t, bool) or not isinstance(t, (int, float, np.floating, np.integer)) or not math.isfinite(t):
                 raise ValueError(f"Ocean.update: t must be a finite time in seconds, got {t!r}")
@@ -126,8 +141,35 @@ class Ocean:
         block_dim = self.fft_plan.block_dim
         wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time, self._loop_period],
                         outputs=[self._spectra], block_dim=block_dim, device=self.device)
-        wp.launch_tiled(self._along_x, dim=[n], inputs=[self._spectra_quads], outputs=[self._field_rows],
+        if out is None:
+            out = self._field_rows
+        elif out.shape != self._field_rows.shape or out.dtype != wp.vec2f or out.device != self.device:
+            raise ValueError(f"Ocean.update: out must be a {self._field_rows.shape} vec2f array on {self.device}, "
+                             f"got {out.shape} {wp.types.type_repr(out.dtype)} on {out.device}")
+        wp.launch_tiled(self._along_x, dim=[n], inputs=[self._spectra_quads], outputs=[out],
                         block_dim=block_dim, device=self.device)
+
+    def read_fields_from(self, slots: wp.array, cursor: wp.array) -> None:
+        """From now on, take the fields from ``slots`` instead of evaluating them: each :meth:`update`
+        copies ``slots[cursor[0]]`` into this ocean's fields and adds 1 to ``cursor[0]``.
+
+        For many oceans of one config that would each evaluate the same fields (the workers of
+        ``ocean_warp.envs.sharded``): one evaluates them into the slots with ``update(out=slots[k])``,
+        the others copy them, bit for bit the same, at a fraction of the cost. The cursor lives on the
+        device, so a captured graph reads whichever slot the cursor names when it is replayed.
+
+        Args:
+            slots: (K, FIELD_COUNT * n, n) vec2f, K sets of fields of this ocean's grid.
+            cursor: (1,) int32, the slot the next update reads.
+        """
+        shape = self._field_rows.shape
+        if slots.ndim != 3 or slots.shape[1:] != shape or slots.dtype != wp.vec2f or slots.device != self.device:
+            raise ValueError(f"Ocean.read_fields_from: slots must be a (K, {shape[0]}, {shape[1]}) vec2f array on "
+                             f"{self.device}, got {slots.shape} {wp.types.type_repr(slots.dtype)} on {slots.device}")
+        if cursor.shape != (1,) or cursor.dtype != wp.int32 or cursor.device != self.device:
+            raise ValueError(f"Ocean.read_fields_from: cursor must be a (1,) int32 array on {self.device}, got "
+                             f"{cursor.shape} {wp.types.type_repr(cursor.dtype)} on {cursor.device}")
+        self._slots = (slots, cursor)
 
     # --- sea state ------------------------------------------------------------------------------
     @property

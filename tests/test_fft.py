@@ -91,3 +91,35 @@ def test_captured_update_replays_at_device_time(device, rng):
         ocean.update(float(t))
         np.testing.assert_array_equal(replayed, ocean.field_numpy("height"))
     assert not np.allclose(replayed, Ocean(ocean.config, device=device).field_numpy("height"))
+
+
+def test_an_ocean_reading_slots_copies_what_another_evaluated(device, rng):
+    """One ocean evaluates two times into slots; a second of the same config reads them in the cursor's
+    order, bit for bit what it evaluates itself, inside a captured graph too; it refuses a time of its own."""
+    config = OceanConfig(resolution=64, tile_size=200.0, significant_wave_height=2.0, choppiness=0.5,
+                         seed=int(rng.integers(2**31)))
+    source, reader = Ocean(config, device=device), Ocean(config, device=device)
+    times = rng.uniform(0.0, 500.0, size=2)
+    rows = source.fields.shape[0] * source.fields.shape[1]
+    slots = wp.zeros((2, rows, config.resolution), dtype=wp.vec2f, device=device)
+    for slot, t in enumerate(times):
+        source.update(float(t), out=slots[slot])
+    expected = []
+    for t in times:
+        reader.update(float(t))
+        expected.append(reader.field_numpy("height").copy())
+    cursor = wp.zeros(1, dtype=wp.int32, device=device)
+    reader.read_fields_from(slots, cursor)
+    with wp.ScopedCapture(device=device) as capture:
+        reader.update()
+    for slot in (0, 1):
+        wp.capture_launch(capture.graph)
+        np.testing.assert_array_equal(reader.field_numpy("height"), expected[slot])
+    assert cursor.numpy()[0] == 2
+    assert not np.array_equal(expected[0], expected[1])
+    with pytest.raises(ValueError, match="cannot evaluate t = 1.0"):
+        reader.update(1.0)
+    with pytest.raises(ValueError, match=r"slots must be a \(K, 256, 64\) vec2f array"):
+        reader.read_fields_from(wp.zeros((2, 64, 64), dtype=wp.vec2f, device=device), cursor)
+    with pytest.raises(ValueError, match=r"out must be a \(256, 64\) vec2f array"):
+        source.update(0.0, out=wp.zeros((64, 64), dtype=wp.vec2f, device=device))

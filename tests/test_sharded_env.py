@@ -107,6 +107,36 @@ def test_sharded_env_matches_one_process_step_for_step():
         assert log.keys() == expected.keys() and all(torch.equal(log[k], expected[k]) for k in log)
 
 
+def test_shared_ocean_follows_sea_state_changes_and_every_substep_updates():
+    """The sea evaluated once by the parent, one decision ahead: a change of sea state between decisions,
+    a re-seeded reset and an ocean updated every substep (5 updates a step) keep it bit for bit equal to
+    one SailingEnv and to workers that evaluate their own sea."""
+    base = fast_config()
+    task = dataclasses.replace(base, simulator=dataclasses.replace(base.simulator, ocean_every_substep=True))
+    single = SailingEnv(task, 4, device="cpu", seed=2)
+    generator = torch.Generator().manual_seed(1)
+    with ShardedSailingEnv(task, 4, workers=2, seed=2) as shared, \
+            ShardedSailingEnv(task, 4, workers=2, seed=2, shared_ocean=False) as own:
+        for step in range(7):
+            if step == 2:
+                for env in (single, shared, own):
+                    env.simulator.ocean.set_significant_wave_height(0.6)
+            if step == 5:
+                for env in (single, shared, own):
+                    env.reset(seed=9)
+            actions = 2.0 * torch.rand(4, 3, generator=generator) - 1.0
+            for env in (single, shared, own):
+                env.step(actions)
+            for name in COMPARED:
+                expected = getattr(single.buffers, name)
+                assert torch.equal(expected, getattr(shared.buffers, name)), (step, name)
+                assert torch.equal(expected, getattr(own.buffers, name)), (step, name)
+        assert shared.simulator.ocean.significant_wave_height == single.simulator.ocean.significant_wave_height
+    with pytest.raises(ValueError, match="hs must be a finite number"):
+        with ShardedSailingEnv(task, 2, workers=1) as env:
+            env.simulator.ocean.set_significant_wave_height(-1.0)
+
+
 def test_a_killed_worker_is_reported_and_every_worker_stops():
     env = ShardedSailingEnv(fast_config(), 4, workers=2, seed=1)
     env.step(torch.zeros(4, 3))
