@@ -4,8 +4,8 @@ A step runs, on the simulator's device: the actions to actuator commands, ``step
 physics steps, the reward and episode-end kernel, the observation kernel (the final observations),
 a start drawn for every environment that ended, the simulator's masked reset of exactly those, and the
 observation kernel again (what the policy sees next). All of it is one captured graph, on CUDA and on
-the CPU (``ocean_warp.replay``); nothing in it allocates or waits for the host. The results are Warp arrays that torch reads through views
-bound in the constructor (``env.buffers``).
+the CPU (``ocean_warp.replay``); nothing in it allocates or waits for the host. The results are Warp
+arrays that torch reads through views bound in the constructor (``env.buffers``).
 """
 
 from __future__ import annotations

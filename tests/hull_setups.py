@@ -3,6 +3,7 @@
 import numpy as np
 
 import ocean_warp as ow
+from ocean_warp.frames import roll_pitch_yaw
 
 
 def calm_ocean(device, *, tile_size: float = 64.0, resolution: int = 16) -> ow.Ocean:
@@ -44,3 +45,10 @@ def settled_heights(sim, steps: int, average_over: int) -> np.ndarray:
         if step >= steps - average_over:
             heights.append(sim.fleet.numpy()["position"][:, 2].copy())
     return np.mean(heights, axis=0)
+
+
+def assert_afloat_upright(state) -> None:
+    """Every boat of a fleet's ``numpy()`` state heeled less than 1°, trimmed less than 2°, flagged OK."""
+    roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
+    assert np.all(np.abs(np.degrees(roll)) < 1.0) and np.all(np.abs(np.degrees(pitch)) < 2.0)
+    assert np.all(state["status"] == 0)

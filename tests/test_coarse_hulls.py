@@ -20,8 +20,7 @@ import ocean_warp as ow
 from benchmarks.hull_fidelity import equilibrium_height, numpy_hydrostatics, tolerances
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull, triangle_count
-from ocean_warp.frames import roll_pitch_yaw
-from tests.hull_setups import rotation_matrix, settled_heights
+from tests.hull_setups import assert_afloat_upright, rotation_matrix, settled_heights
 
 BUDGETS = (256, 512, 1024, 2048)
 WATER_DENSITY = 1025.0
@@ -102,9 +101,7 @@ def test_coarse_hull_floats_upright_at_its_rest_height(device, budget):
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.05]])
     height = settled_heights(sim, 400, average_over=100)
     state = sim.fleet.numpy()
-    roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
-    assert np.all(np.abs(np.degrees(roll)) < 1.0) and np.all(np.abs(np.degrees(pitch)) < 2.0)
-    assert np.all(state["status"] == 0)
+    assert_afloat_upright(state)
     eboat = sim.eboat
     volume = eboat.boat_type.mass / config.water_density
     settled = equilibrium_height(np.asarray(eboat.hull.vertices, np.float64), np.asarray(eboat.hull.triangles),

@@ -10,9 +10,8 @@ from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorC
 from ocean_warp.eboat.hull_shape import HullShape
 from ocean_warp.eboat.mass_properties import eboat_mass_properties
 from ocean_warp.eboat.sheet import LINKS, Version
-from ocean_warp.frames import roll_pitch_yaw
 from tests import reference_hull
-from tests.hull_setups import rotation_matrix, settled_heights
+from tests.hull_setups import assert_afloat_upright, rotation_matrix, settled_heights
 
 # The sheet's link table, typed in again: mass [kg] of every link of eboat4 (V-B, V-C).
 SHEET_MASSES = {"hull": 83.69, "keel": 40.04, "mast": 12.5, "boom": 2.41, "sail": 2.22, "rudder": 1.60, "deck": 4.66,
@@ -133,9 +132,7 @@ def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics):
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.1]])
     height = settled_heights(sim, 500, average_over=100)
     state = sim.fleet.numpy()
-    roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
-    assert np.all(np.abs(np.degrees(roll)) < 1.0) and np.all(np.abs(np.degrees(pitch)) < 2.0)
-    assert np.all(state["status"] == 0)
+    assert_afloat_upright(state)
     turn = rotation_matrix(state["orientation"][0])
     if hydrostatics == "mesh":
         # Archimedes by an independent implementation; about 5 cm above the source's waterline.
