@@ -109,7 +109,7 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
         from .demo_stage import MissionStageRecorder
 
         recorder = MissionStageRecorder(env, os.path.join(out, "eboat_fleet.usdc"), frames_per_decision=frames,
-                                        ocean_resolution=config.ocean_resolution)
+                                        **config.stage_options())
     elif recorder_factory is not None:
         recorder = recorder_factory(env, os.path.join(out, "eboat_fleet.usdc"), frames_per_decision=frames)
 
@@ -178,10 +178,15 @@ def main(argv: list[str] | None = None) -> int:
         config = DemoConfig(**scenario_arguments(args), policy_share=args.policy_share, time_limit=args.time_limit,
                             loop_period=args.loop_period, usd=not args.no_usd)
         device = str(wp.get_device(args.device))
-    except (ValueError, RuntimeError) as error:
+        os.makedirs(args.out, exist_ok=True)
+    except (ValueError, RuntimeError, OSError) as error:  # a bad setting; an unknown device; an unusable --out
         print(f"ocean-warp demo: {error}", file=sys.stderr)
         return 2
-    result = run_demo(config, device=device, out=args.out, progress=not args.no_progress)
+    try:
+        result = run_demo(config, device=device, out=args.out, progress=not args.no_progress)
+    except OSError as error:  # a file could not be written
+        print(f"ocean-warp demo: {error}", file=sys.stderr)
+        return 1
     hull = demo_task(config, device).simulator.boat.hydrostatics.value
     print(result.evaluation.format_table())
     print(_summary(config, result, hull))

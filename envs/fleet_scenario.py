@@ -20,6 +20,10 @@ HULLS = ("auto", "mesh", "points")
 CPU, where the mesh hull costs about 30 times more, mesh on a GPU)."""
 
 
+STEPS_PER_DECISION = 20
+"""Physics steps in one decision of the course task (1 s of 0.05 s steps): the stage's frames sample them."""
+
+
 @dataclasses.dataclass(frozen=True)
 class FleetScenario:
     """The fleet, its sea and wind, and how the stage samples them."""
@@ -38,6 +42,10 @@ class FleetScenario:
     """Frames of the USD stage per simulated second; must divide the 20 physics steps of a decision."""
     ocean_resolution: int = 64
     """At most this many ocean mesh vertices along a side of the area shown."""
+    ocean_margin: float = 20.0
+    """Water shown beyond the route and the boats [m] (every place a boat went, for a looping sea)."""
+    ocean_normals: bool = False
+    """Write the ocean mesh's vertex normals (12 bytes a vertex and frame more)."""
 
     def __post_init__(self):
         owner = type(self).__name__
@@ -48,7 +56,18 @@ class FleetScenario:
         if self.hull not in HULLS:
             raise ValueError(f"{owner}.hull must be one of {', '.join(HULLS)}, got {self.hull!r}")
         require_int_in_range(owner, "frames_per_second", self.frames_per_second, 1, 20)
+        if STEPS_PER_DECISION % self.frames_per_second:
+            raise ValueError(f"{owner}.frames_per_second must divide the {STEPS_PER_DECISION} physics steps of a "
+                             f"decision (1, 2, 4, 5, 10 or 20), got {self.frames_per_second}")
         require_int_in_range(owner, "ocean_resolution", self.ocean_resolution, 2, 4096)
+        require_in_range(owner, "ocean_margin", self.ocean_margin, 0.0, 10_000.0)
+        if not isinstance(self.ocean_normals, bool):
+            raise ValueError(f"{owner}.ocean_normals must be True or False, got {self.ocean_normals!r}")
+
+    def stage_options(self) -> dict:
+        """The ocean options of the stage recorder (see ``MissionStageRecorder``)."""
+        return dict(ocean_resolution=self.ocean_resolution, ocean_margin=self.ocean_margin,
+                    ocean_normals=self.ocean_normals)
 
     def task(self, *, time_limit: float, loop_period: float | None, device) -> object:
         """This scenario's :func:`fleet_course_task`."""
@@ -91,6 +110,9 @@ def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScena
                         help="USD frames per simulated second (1, 2, 4, 5, 10 or 20)")
     parser.add_argument("--ocean-resolution", type=int, default=defaults.ocean_resolution,
                         help="ocean mesh vertices along a side of the area shown, at most")
+    parser.add_argument("--ocean-margin", type=float, default=defaults.ocean_margin, metavar="METRES",
+                        help="water shown beyond the route and the boats [m]")
+    parser.add_argument("--ocean-normals", action="store_true", help="write the ocean mesh's vertex normals")
     parser.add_argument("--device", default="cpu", help='Warp device: "cpu", "cuda" or "cuda:N"')
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
@@ -98,4 +120,5 @@ def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScena
 def scenario_arguments(args: argparse.Namespace) -> dict:
     """:class:`FleetScenario`'s fields from options parsed by :func:`add_scenario_arguments`."""
     return dict(boats=args.boats, sea_state=args.sea_state, wind=args.wind, seed=args.seed, hull=args.hull,
-                frames_per_second=args.fps, ocean_resolution=args.ocean_resolution)
+                frames_per_second=args.fps, ocean_resolution=args.ocean_resolution, ocean_margin=args.ocean_margin,
+                ocean_normals=args.ocean_normals)

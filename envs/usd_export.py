@@ -17,7 +17,7 @@ import numpy as np
 import torch
 import warp as wp
 
-from ocean_warp.validation import require_positive
+from ocean_warp.validation import require_in_range, require_positive
 
 from .core import SailingEnv
 from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
@@ -52,7 +52,7 @@ class ExportConfig(FleetScenario):
     def __post_init__(self):
         super().__post_init__()
         owner = "ExportConfig"
-        require_positive(owner, "duration", self.duration, unit=" [s]")
+        require_in_range(owner, "duration", self.duration, 1.0, 10**7)  # at least one decision of 1 s
         if self.controller not in CONTROLLERS:
             raise ValueError(f"{owner}.controller must be one of {', '.join(CONTROLLERS)}, got {self.controller!r}")
         if len(self.actions) != 3 or any(not -1.0 <= float(a) <= 1.0 for a in self.actions):
@@ -100,8 +100,7 @@ def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: st
     controller.reset(env)
     decision = RecordedDecision(env, config.frames_per_second)
     recorder = MissionStageRecorder(env, path, frames_per_decision=config.frames_per_second,
-                                    ocean_resolution=config.ocean_resolution, instanced=config.instanced,
-                                    ascii=ascii)
+                                    instanced=config.instanced, ascii=ascii, **config.stage_options())
     decisions = int(round(config.duration / env.decision_period))
     try:
         for k in tqdm(range(decisions), desc="export-usd", unit="decision", disable=not progress):
@@ -133,7 +132,8 @@ def _parser() -> argparse.ArgumentParser:
     add_scenario_arguments(parser, d)
     parser.add_argument("--duration", type=float, default=d.duration, metavar="SECONDS", help="simulated time [s]")
     parser.add_argument("--controller", choices=CONTROLLERS, default=d.controller, help="who steers every boat")
-    parser.add_argument("--policy", default=None, metavar="PATH", help="exported policy (default: the shipped one)")
+    parser.add_argument("--policy", default=argparse.SUPPRESS, metavar="PATH",
+                        help="exported policy (default: the shipped mission policy)")
     parser.add_argument("--actions", type=_actions, default=d.actions, metavar="A0,A1,A2",
                         help="fixed commands in [-1, 1]: propeller int(5 a0), sheet (a1 + 1) 45 deg, rudder 60 a2 deg")
     parser.add_argument("--loop-period", type=float, default=None, metavar="SECONDS",
@@ -141,7 +141,8 @@ def _parser() -> argparse.ArgumentParser:
     layout = parser.add_mutually_exclusive_group()
     layout.add_argument("--instanced", dest="instanced", action="store_true", default=None,
                         help="point instancers for the boats (default: above 64 boats)")
-    layout.add_argument("--prims", dest="instanced", action="store_false", help="one prim per boat")
+    layout.add_argument("--prims", dest="instanced", action="store_false", default=argparse.SUPPRESS,
+                        help="one prim per boat (default: up to 64 boats)")
     parser.add_argument("--usda", action="store_true", help="text (.usda) instead of crate (.usdc)")
     parser.add_argument("--out", default="out/scenario.usdc", help="the stage to write")
     return parser
@@ -155,10 +156,11 @@ def main(argv: list[str] | None = None) -> int:
         out = out[: -len(".usdc")] + ".usda"
     try:
         config = ExportConfig(**scenario_arguments(args), duration=args.duration, controller=args.controller,
-                              actions=args.actions, policy=args.policy, loop_period=args.loop_period,
+                              actions=args.actions, policy=getattr(args, "policy", None), loop_period=args.loop_period,
                               instanced=args.instanced)
         device = str(wp.get_device(args.device))
-    except (ValueError, RuntimeError) as error:  # a bad setting; an unknown device
+        os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    except (ValueError, RuntimeError, OSError) as error:  # a bad setting; an unknown device; an unusable --out
         print(f"ocean-warp export-usd: {error}", file=sys.stderr)
         return 2
     started = time.perf_counter()
@@ -168,6 +170,9 @@ def main(argv: list[str] | None = None) -> int:
     except (ValueError, CheckpointError) as error:
         print(f"ocean-warp export-usd: {error}", file=sys.stderr)
         return 2
+    except OSError as error:  # the stage could not be written
+        print(f"ocean-warp export-usd: {error}", file=sys.stderr)
+        return 1
     seconds = time.perf_counter() - started
     print(f"{config.boats} boats x {config.duration:g} s ({config.controller}) recorded in {seconds:.1f} s")
     for name, path in files.items():

@@ -20,9 +20,14 @@ JOBS = {
 
 def main(argv=None) -> None:
     argv = sys.argv[1:] if argv is None else list(argv)
-    parser = argparse.ArgumentParser(prog="ocean-warp", description=__doc__)
+    parser = argparse.ArgumentParser(
+        prog="ocean-warp", description="ocean_warp's jobs: `ocean-warp <job> [options]`; `ocean-warp <job> --help` "
+        "gives a job's options with their defaults and units.")
     parser.add_argument("job", choices=sorted(JOBS), help="; ".join(f"{name}: {text}" for name, (_, text) in JOBS.items()))
     args, rest = parser.parse_known_args(argv[:1])
+    import warp as wp
+
+    wp.config.log_level = wp.LOG_WARNING  # Warp's banner and module-load lines would bury the summary
     module_name = JOBS[args.job][0]
     module = __import__(module_name, fromlist=["main"])
     try:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 
 import numpy as np
 import pytest
@@ -39,6 +40,17 @@ def test_tiny_demo_writes_stage_pictures_and_table(tmp_path):
     assert (stage.GetStartTimeCode(), stage.GetEndTimeCode()) == (1.0, 12.0)  # frames at 0.5 s ... 6 s
     assert stage.GetPrimAtPath(FLEET).GetAttribute("oceanWarp:boatCount").Get() == 5
     assert validate_stage(result.files["stage"]) == []
+    # Each boat sailed by the controller its row names: a fleet of one controller, on the same water with
+    # the same starts and gusts, sails those boats the same way (boats 0-2 the policy, 3-4 the autopilot).
+    for share, boats, name in ((1.0, slice(0, 3), "policy"), (0.0, slice(3, 5), "autopilot")):
+        alone = run_demo(dataclasses.replace(config, policy_share=share, usd=False), device="cpu",
+                         out=tmp_path / name, progress=False)
+        reference = _rows(alone.files["runs.csv"])[boats]
+        mixed = [row for row in runs if row["controller"] == name]
+        for key in ("distance_m", "motor_use", "start_heading_deg"):
+            assert [row[key] for row in mixed] == [row[key] for row in reference], key
+    policy_distance = [float(row["distance_m"]) for row in runs[:3]]
+    assert policy_distance != [float(row["distance_m"]) for row in _rows(alone.files["runs.csv"])[:3]]
 
 
 def test_export_usd_fixed_commands_move_the_boats_as_commanded(tmp_path):
@@ -57,7 +69,7 @@ def test_export_usd_fixed_commands_move_the_boats_as_commanded(tmp_path):
         assert np.linalg.norm(end[:2] - start[:2]) > 3.0
 
 
-def test_cli_help_and_bad_options(capsys):
+def test_cli_help_and_bad_options(capsys, tmp_path):
     for job in ("demo", "export-usd"):
         with pytest.raises(SystemExit) as exit_info:
             cli.main([job, "--help"])
@@ -72,6 +84,17 @@ def test_cli_help_and_bad_options(capsys):
         cli.main(["export-usd", "--controller", "fixed", "--actions", "2,0,0"])
     assert exit_info.value.code == 2
     assert "actions" in capsys.readouterr().err
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    for argv, name in ((["demo", "--fps", "3", "--no-usd"], "frames_per_second"),
+                       (["demo", "--no-usd", "--out", str(blocker / "demo")], "a_file"),
+                       (["export-usd", "--out", str(blocker / "x.usdc")], "a_file"),
+                       (["export-usd", "--duration", "0.3"], "duration")):
+        with pytest.raises(SystemExit) as exit_info:
+            cli.main(argv)
+        assert exit_info.value.code == 2, argv
+        error = capsys.readouterr().err.strip().splitlines()
+        assert len(error) == 1 and name in error[0], (argv, error)
 
 
 def test_ctrl_c_ends_a_command_with_one_line_and_code_130(monkeypatch, capsys):

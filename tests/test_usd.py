@@ -191,6 +191,12 @@ def test_ocean_loop_stage_joins_its_ends(device, tmp_path):
     assert len(points.GetTimeSamples()) == 61
     first, last = np.array(points.Get(0.0)), np.array(points.Get(60.0))
     np.testing.assert_allclose(last, first, atol=1e-5)
+    # The seam: replayed in a loop, the step from the last frame back to the first is an ordinary 0.1 s
+    # step of the waves, not a jump (unquantised frequencies would jump by a random phase there).
+    frames = np.array([points.Get(float(code)) for code in range(61)], dtype=np.float64)
+    steps = np.abs(np.diff(frames[..., 2], axis=0)).max(axis=1)
+    assert steps[-1] <= 1.5 * steps[:-1].max()
+    assert steps[-1] >= 0.5 * steps[:-1].min() > 0.0
     assert len(first) == 33 * 33
     middle = np.array(points.Get(23.0), dtype=np.float64)
     assert np.abs(middle - first).max() > 0.05
@@ -217,6 +223,27 @@ def test_recorded_ocean_loop_repeats_under_the_boats(device, tmp_path):
                                atol=1e-5)
     assert_rig_matches(stage, truth[-1])
     assert validate_stage(path) == []
+
+
+def test_looping_ocean_lies_under_every_boat_wherever_it_sailed(tmp_path, rng):
+    # Boats that wander far from where they started and from the route (a lost boat, say): the loop is
+    # written at close, so its mesh covers every recorded position plus the margin, not only the first.
+    ocean = ow.Ocean(small_sea(loop_period=2.0), device="cpu")
+    margin = 3.0
+    start = rng.uniform(-5.0, 5.0, size=(2, 3))
+    drift = rng.uniform(-1.0, 1.0, size=(2, 3)) * [40.0, 40.0, 0.0]
+    quaternions = np.tile([0.0, 0.0, 0.0, 1.0], (2, 1))
+    recorder = StageRecorder(tmp_path / "far.usdc", fps=2.0, ocean=ocean, ocean_loop=True, ocean_resolution=16,
+                             ocean_margin=margin, boats=2, route=[[0.0, 0.0], [4.0, 3.0]])
+    positions = [start + drift * k / 10.0 for k in range(11)]
+    for k, where in enumerate(positions):
+        recorder.record(0.5 * (k + 1), where, quaternions)
+    stage = Usd.Stage.Open(recorder.close())
+    points = np.array(UsdGeom.Mesh.Get(stage, "/World/Ocean").GetPointsAttr().Get(1.0))
+    visited = np.concatenate(positions)[:, :2]
+    assert np.all(points[:, :2].min(axis=0) <= visited.min(axis=0) - margin + 0.1)
+    assert np.all(points[:, :2].max(axis=0) >= visited.max(axis=0) + margin - 0.1)
+    assert validate_stage(stage.GetRootLayer().realPath) == []
 
 
 @pytest.mark.parametrize("resolution,xs,ys", [

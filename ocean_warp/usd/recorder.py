@@ -137,7 +137,9 @@ class StageRecorder:
       spacing is a whole number of the ocean's grid cells (the vertices are grid nodes). Each frame costs
       12 bytes per vertex for the points, as much again for colours and for normals.
     - ``ocean_extent``: (xmin, xmax, ymin, ymax) [m] of the ocean mesh (the patch is periodic and tiled to
-      cover it). None: the boats' positions at the first frame and the route, plus ``ocean_margin`` [m].
+      cover it). None: the route and the boats' positions, plus ``ocean_margin`` [m]: the positions at the
+      first frame for a mesh per frame (written as it comes), every recorded position for a loop (written
+      at :meth:`close`), so that a loop's ocean lies under every boat wherever it sailed.
     - ``ocean_normals``, ``ocean_colors``: vertex normals; a displayColor by height (deep blue to foam).
     - ``ocean_loop``: write one seamless loop of the ocean (a sibling file, :func:`loop_path_for`) that the
       stage repeats over the whole recording with value clips, instead of a mesh per frame. Needs an ocean
@@ -218,6 +220,7 @@ class StageRecorder:
             raise
         self._ocean_writer: OceanMeshWriter | None = None
         self.lattice: OceanLattice | None = None
+        self._visited: np.ndarray | None = None
         self.first_time_code: float | None = None
         self.last_time_code: float | None = None
         self.frames = 0
@@ -275,6 +278,8 @@ class StageRecorder:
                 self._ocean_writer.write(code, ocean_fields_at(self.ocean, time_s))
             if boats is not None:
                 self._fleet.write(code, *boats)
+                if self.ocean_loop:
+                    self._track_visited(boats[0])
             self._file.frame_written()
         except BaseException:
             self.abort()
@@ -325,16 +330,18 @@ class StageRecorder:
             define_wind_arrow(stage, self.wind[0], self.wind[1], origin)
         if self.ocean is None:
             return
-        self.lattice = OceanLattice.covering(self.ocean.config, extent, self.ocean_resolution)
         if self.ocean_loop:
-            self._start_loop()
+            # The loop does not depend on the frames: it is written at close, over every place a boat went.
             return
+        self.lattice = OceanLattice.covering(self.ocean.config, extent, self.ocean_resolution)
         self._ocean_writer = OceanMeshWriter(stage, OCEAN, self.lattice, choppiness=self.ocean.config.choppiness,
                                              normals=self.ocean_normals, colors=self.ocean_colors,
                                              color_range=_color_range(self.ocean))
 
     def _default_extent(self, positions: np.ndarray | None):
         points = [p[:, :2] for p in (positions, self.route) if p is not None and len(p)]
+        if self._visited is not None:
+            points.append(self._visited.reshape(2, 2))
         if not points:
             if self.ocean is None:
                 return None
@@ -345,8 +352,20 @@ class StageRecorder:
         return (float(xy[:, 0].min() - margin), float(xy[:, 0].max() + margin),
                 float(xy[:, 1].min() - margin), float(xy[:, 1].max() + margin))
 
+    def _track_visited(self, positions: np.ndarray) -> None:
+        """Grow the box (xmin, ymin, xmax, ymax) [m] of every boat position recorded so far."""
+        low = positions[:, :2].min(axis=0)
+        high = positions[:, :2].max(axis=0)
+        if self._visited is None:
+            self._visited = np.concatenate([low, high])
+        else:
+            self._visited = np.concatenate([np.minimum(self._visited[:2], low), np.maximum(self._visited[2:], high)])
+
     def _start_loop(self) -> None:
-        """Write the loop file now (the lattice is known); the clips that repeat it are authored at close."""
+        """Fix the lattice over the extent (the user's, or every boat position recorded and the route, plus
+        the margin) and write the loop file; the clips that repeat it are authored at close."""
+        extent = self._extent or self._default_extent(None)
+        self.lattice = OceanLattice.covering(self.ocean.config, extent, self.ocean_resolution)
         self._loop_file = StageFile(self.loop_path, fps=self.fps, ascii=self._file.format == "usda",
                                     owner="StageRecorder")
         codes = _loop_time_codes(self.ocean.config.loop_period, self.fps)
@@ -387,6 +406,8 @@ class StageRecorder:
             last = self.last_time_code if self.last_time_code is not None else first
             stage.SetStartTimeCode(first)
             stage.SetEndTimeCode(last)
+            if self.ocean_loop and self.first_time_code is not None:
+                self._start_loop()
             if self._loop_file is not None:
                 # The loop first, at its final path, so that the clips find it when anything reads them.
                 self._loop_file.commit()
