@@ -5,6 +5,8 @@ checkpoints that resume bit for bit, a sea-state curriculum, and the exported po
     ocean-warp train --task EBoatWaypoint-v0 --device cpu --workers 8 --num-envs 512
     ocean-warp train --task EBoatMission-v0 --device cuda --iterations 250 --run-name h100
     ocean-warp train --task EBoatMission-v0 --resume runs/EBoatMission-v0/<date>_<name>/model_99.pt
+    ocean-warp train --task EBoatMission-v0 --gpus 2 --minutes 5          # 2 GPUs, 4096 envs on each
+    torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --device cpu ...   # 2 CPU processes
 
 A run writes into ``runs/<task>/<date>_<name>/``: ``config.json`` (the resolved config),
 rsl-rl's TensorBoard events, ``progress.csv`` (one row per iteration, rewritten after each),
@@ -15,6 +17,13 @@ The loop is rsl-rl's ``OnPolicyRunner.learn`` with three additions between itera
 curriculum's sea state, a seeded reset of every environment at each multiple of ``save_interval``
 (so a run resumed from a checkpoint meets exactly the environments the uninterrupted run met), and the
 checkpoint, which holds the torch random state and the curriculum beside the networks.
+
+Several ranks (torchrun; ``--gpus G`` starts it): each rank simulates ``--num-envs`` environments of its
+own (rank r's are environments [r N, (r + 1) N) of one batch), rsl-rl averages the gradients and the
+normalisers, and one small collective per iteration sums the episode statistics (the curriculum moves
+on all ranks' episodes, alike everywhere) and stops every rank when one failed. Rank 0 alone writes, and
+adds ``distributed.json`` (every rank's checksum of its networks at the end, checked equal). See
+``ocean_warp.envs.distributed``.
 """
 
 from __future__ import annotations
@@ -26,12 +35,14 @@ import csv
 import dataclasses
 import datetime
 import enum
+import hashlib
 import io
 import json
 import math
 import os
 import sys
 import time
+import traceback
 from typing import Any
 
 import numpy as np
@@ -41,6 +52,20 @@ from ocean_warp.atomic_files import atomic_output
 
 from .agents import TrainConfig, agent_config
 from .core import SailingEnv
+from .distributed import (
+    DEFAULT_TIMEOUT_S,
+    DistributedRunner,
+    RankContext,
+    RankFailure,
+    Ranks,
+    derived_seed,
+    host_name,
+    inject_fault,
+    parameter_checksum,
+    rank_device,
+    rank_seed,
+)
+from .distributed_launch import gpus_problem, launch, torchrun_command, visible_gpus
 from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
 from .rsl_rl_env import RslRlVecEnv
 from .sharded import ShardedSailingEnv
@@ -61,6 +86,11 @@ class TrainResult:
     """[s] from the start of this call."""
     history: list[dict[str, float]]
     """One row per iteration (this call and, resumed, the ones before): see ``progress.csv``."""
+    world_size: int = 1
+    """Ranks that trained it (processes, one per GPU)."""
+    parameter_checksums: list[str] | None = None
+    """Several ranks: each rank's SHA-256 of its networks at the end, checked equal (also in the run's
+    ``distributed.json``); None for one rank."""
 
 
 class _Curriculum:
@@ -134,8 +164,9 @@ def _segment_seed(seed: int, iteration: int) -> int:
 
 
 def _restart_segment(vec: RslRlVecEnv, config: TrainConfig, seed: int, iteration: int,
-                     full_budget: torch.Tensor) -> None:
-    """Every environment from a reset seeded by (seed, iteration), episode lengths spread at random.
+                     full_budget: torch.Tensor, first_env: int = 0) -> None:
+    """Every environment from a reset seeded by (seed, iteration), episode lengths spread at random
+    (drawn for environments 0 .. first_env + N - 1, this batch taking its own: a rank's share of them).
 
     ``full_budget`` (N,) bool is set to whether each env's current episode has its whole time budget:
     an episode whose clock was started part-way ends early by construction, and counting it would
@@ -145,8 +176,8 @@ def _restart_segment(vec: RslRlVecEnv, config: TrainConfig, seed: int, iteration
     full_budget.fill_(not config.random_episode_start)
     if config.random_episode_start:
         generator = torch.Generator().manual_seed(_segment_seed(seed, iteration) + 1)
-        lengths = torch.randint(0, int(vec.max_episode_length), (vec.num_envs,), generator=generator)
-        vec.episode_length_buf = lengths.to(device=vec.device, dtype=vec.episode_length_buf.dtype)
+        lengths = torch.randint(0, int(vec.max_episode_length), (first_env + vec.num_envs,), generator=generator)
+        vec.episode_length_buf = lengths[first_env:].to(device=vec.device, dtype=vec.episode_length_buf.dtype)
 
 
 def _default_run_dir(task: str, run_name: str | None, root: str) -> str:
@@ -157,85 +188,137 @@ def _default_run_dir(task: str, run_name: str | None, root: str) -> str:
 def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: str | None = None,
           run_name: str | None = None, runs_root: str = "runs", num_envs: int | None = None,
           iterations: int | None = None, minutes: float | None = None, resume: str | None = None,
-          progress: bool = True, workers: int = 1) -> TrainResult:
-    """Train a policy with rsl-rl PPO.
+          progress: bool = True, workers: int = 1, rank: RankContext | None = None,
+          dist_timeout: float = DEFAULT_TIMEOUT_S) -> TrainResult:
+    """Train a policy with rsl-rl PPO, in this process or as one rank of several (torchrun).
 
     Args:
         config: the task's training config (``agents.agent_config(task)``, changed as wished).
-        device: "cpu", "cuda" or "cuda:N": the simulator and the networks both live there.
-        seed: seeds the environments' random streams, the networks' initialisation and PPO's sampling.
+        device: "cpu", "cuda" or "cuda:N": the simulator and the networks both live there. With several
+            ranks, "cuda" is each rank's ``cuda:LOCAL_RANK``.
+        seed: seeds the environments' random streams, the networks' initialisation and PPO's sampling
+            (rank r's torch seed: ``distributed.rank_seed(seed, r)``).
         run_dir: where to write (default ``runs_root/<task>/<date>_<run_name>``).
-        num_envs: environments (default: the config's for this device).
+        num_envs: environments of this rank (default: the config's for this device); W ranks simulate
+            W times as many, rank r's being environments [r num_envs, (r + 1) num_envs) of one batch.
         iterations: PPO iterations to run in this call (default: the config's).
         minutes: stop after the iteration that passes this much wall time (an upper bound on
-            ``iterations``).
+            ``iterations``; rank 0's clock decides for every rank).
         resume: a training checkpoint (``model_<it>.pt``) to continue from: networks, optimiser, torch
-            random state, curriculum; the next iteration is the one after it.
-        progress: show a progress bar.
+            random state, curriculum; the next iteration is the one after it. Rank 0 reads it and sends it
+            to the others; it may come from a run with another number of ranks.
+        progress: show a progress bar (rank 0).
         workers: processes that simulate the environments, each a shard of them on a core of its own
-            (a :class:`ShardedSailingEnv`, CPU only; the same results as 1, the default, for the same
-            seed).
+            (a :class:`ShardedSailingEnv`, CPU only, one rank only; the same results as 1, the default,
+            for the same seed).
+        rank: which rank this is (default: from torchrun's RANK, LOCAL_RANK, WORLD_SIZE; rank 0 of 1
+            without them).
+        dist_timeout: [s] the longest any rank waits for the others (several ranks only).
+
+    Only rank 0 writes files (run folder, config.json, progress.csv, TensorBoard, checkpoints,
+    policy.pt) and shows progress; every rank returns the same iterations and history.
 
     Returns:
         a :class:`TrainResult`.
+
+    Raises:
+        RankFailure: (several ranks) a rank failed or lost contact with the others; every rank raises.
     """
-    from rsl_rl.runners import OnPolicyRunner
+    context = RankContext.from_env() if rank is None else rank
+    if not context.distributed:
+        device = _resolve_device(device)
+    ranks = Ranks.start(context, device, dist_timeout)
+    result = _train(config, ranks, device=device, seed=seed, run_dir=run_dir, run_name=run_name,
+                    runs_root=runs_root, num_envs=num_envs, iterations=iterations, minutes=minutes, resume=resume,
+                    progress=progress, workers=workers)
+    ranks.close()  # only after success: a failed rank exits, and torchrun stops the others
+    return result
 
-    device = _resolve_device(device)
-    is_cuda = device.startswith("cuda")
-    num_envs = config.num_envs(is_cuda) if num_envs is None else int(num_envs)
-    iterations = config.iterations if iterations is None else int(iterations)
-    if iterations < 1:
-        raise ValueError(f"iterations must be >= 1, got {iterations}")
-    if minutes is not None and not (math.isfinite(minutes) and minutes > 0):
-        raise ValueError(f"minutes must be a positive number, got {minutes}")
-    _check_workers(workers, device, num_envs)
 
-    checkpoint = None
-    if resume is not None:
-        checkpoint = read_checkpoint(resume)
-        _check_resumable(checkpoint, config, resume)
-        if run_dir is None:
+def _train(config: TrainConfig, ranks: Ranks, *, device: str, seed: int, run_dir: str | None, run_name: str | None,
+           runs_root: str, num_envs: int | None, iterations: int | None, minutes: float | None, resume: str | None,
+           progress: bool, workers: int) -> TrainResult:
+    context = ranks.context
+    main_rank = context.is_main
+    error = None
+    try:
+        if context.distributed:
+            device = _resolve_device(rank_device(context, device))
+        is_cuda = device.startswith("cuda")
+        num_envs = config.num_envs(is_cuda) if num_envs is None else int(num_envs)
+        iterations = config.iterations if iterations is None else int(iterations)
+        if iterations < 1:
+            raise ValueError(f"iterations must be >= 1, got {iterations}")
+        if minutes is not None and not (math.isfinite(minutes) and minutes > 0):
+            raise ValueError(f"minutes must be a positive number, got {minutes}")
+        _check_workers(workers, device, num_envs)
+        if workers > 1 and context.distributed:
+            raise ValueError(f"workers {workers} with {context.world_size} ranks: a ShardedSailingEnv cannot be one "
+                             "rank's share yet; start more ranks instead (one per core)")
+    except ValueError as caught:
+        error = caught
+    ranks.check(error, "at startup")
+    if context.distributed:
+        _check_same_settings(ranks, config, device, seed, num_envs, iterations, minutes, resume, workers)
+    if is_cuda and context.distributed:
+        torch.cuda.set_device(torch.device(device))
+
+    checkpoint = _read_resumed(ranks, resume, config) if resume is not None else None
+    if main_rank:
+        if run_dir is None and resume is not None:
             run_dir = os.path.dirname(os.path.abspath(resume))
-    run_dir = run_dir or _default_run_dir(config.task, run_name, runs_root)
-    os.makedirs(run_dir, exist_ok=True)
-    resolved = {"task": config.task, "device": device, "seed": seed, "num_envs": num_envs, "workers": workers,
-                "train_config": _jsonable(config)}
-    _write_json(os.path.join(run_dir, "config.json"), resolved)
+        run_dir = run_dir or _default_run_dir(config.task, run_name, runs_root)
+        os.makedirs(run_dir, exist_ok=True)
+        resolved = {"task": config.task, "device": device, "seed": seed, "num_envs": num_envs, "workers": workers,
+                    "world_size": context.world_size, "train_config": _jsonable(config)}
+        _write_json(os.path.join(run_dir, "config.json"), resolved)
+    run_dir = ranks.broadcast(run_dir)
 
-    torch.manual_seed(seed)
-    if workers > 1:
-        env = ShardedSailingEnv(config.train_task, num_envs, workers=workers, seed=seed)
-    else:
-        env = SailingEnv(config.train_task, num_envs, device=device, seed=seed)
-    vec = RslRlVecEnv(env)
-    buffers = env.buffers
-    full_budget = torch.zeros(num_envs, dtype=torch.bool, device=vec.device)
-    runner_config = config.ppo.runner_config(config.steps_per_env)
-    with contextlib.redirect_stdout(io.StringIO()):  # rsl-rl prints the networks; the bar says enough
-        runner = OnPolicyRunner(vec, runner_config, log_dir=run_dir, device=str(vec.device))
+    error = None
+    try:
+        torch.manual_seed(rank_seed(seed, context.rank))
+        if workers > 1:
+            env = ShardedSailingEnv(config.train_task, num_envs, workers=workers, seed=seed)
+        else:
+            env = SailingEnv(config.train_task, num_envs, device=device, seed=seed,
+                             first_env=context.first_env(num_envs))
+        vec = RslRlVecEnv(env)
+        buffers = env.buffers
+        full_budget = torch.zeros(num_envs, dtype=torch.bool, device=vec.device)
+        runner_config = config.ppo.runner_config(config.steps_per_env)
+        with contextlib.redirect_stdout(io.StringIO()):  # rsl-rl prints the networks; the bar says enough
+            runner = DistributedRunner(vec, runner_config, log_dir=run_dir if main_rank else None,
+                                       device=str(vec.device), context=context, timeout_s=ranks.timeout_s)
+    except Exception as caught:
+        if not context.distributed:
+            raise
+        _print_own_failure(context, caught)
+        error = caught
+    ranks.check(error, "building its environments and networks")
     alg = runner.alg
     curriculum = _Curriculum(config.curriculum, checkpoint["curriculum"] if checkpoint else None)
     history: list[dict[str, float]] = []
     start_iteration = 0
     if checkpoint is not None:
         alg.load(checkpoint, None, strict=True)
-        torch.set_rng_state(checkpoint["torch_rng_state"])
-        if is_cuda and "cuda_rng_state" in checkpoint:
-            torch.cuda.set_rng_state(checkpoint["cuda_rng_state"], device=torch.device(device))
+        _restore_random_state(checkpoint, context, device)
         start_iteration = int(checkpoint["iteration"]) + 1
         history = [dict(row) for row in checkpoint.get("history", [])]
+    if context.distributed:
+        alg.broadcast_parameters()  # rank 0's fresh networks (a checkpoint gave every rank the same already)
     ocean = env.simulator.ocean
     base_sea_state = ocean.significant_wave_height
 
     runner.logger.git_status_repos = []  # rsl-rl would store its own repository's git diff in the run
     with contextlib.redirect_stdout(io.StringIO()):
         runner.logger.init_logging_writer()
-    with contextlib.suppress(OSError):
-        os.rmdir(os.path.join(run_dir, "git"))  # left empty by rsl-rl when it stores no repository
+    if main_rank:
+        with contextlib.suppress(OSError):
+            os.rmdir(os.path.join(run_dir, "git"))  # left empty by rsl-rl when it stores no repository
     alg.train_mode()
-    decisions_per_iteration = num_envs * config.steps_per_env
-    bar = _progress_bar(progress, iterations if iterations < 10**8 else None, config.task)
+    decisions_per_iteration = num_envs * config.steps_per_env * context.world_size
+    label = config.task if not context.distributed else f"{config.task} x{context.world_size}"
+    bar = _progress_bar(progress and main_rank, iterations if iterations < 10**8 else None, label)
     started = time.perf_counter()
     wall_before = history[-1]["wall_time_s"] if history else 0.0
     last_checkpoint = resume or ""
@@ -243,7 +326,8 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
     try:
         for iteration in range(start_iteration, start_iteration + iterations):
             if iteration % config.save_interval == 0 or iteration == start_iteration:
-                _restart_segment(vec, config, seed, iteration - iteration % config.save_interval, full_budget)
+                _restart_segment(vec, config, seed, iteration - iteration % config.save_interval, full_budget,
+                                 first_env=context.first_env(num_envs))
             sea_state = curriculum.sea_state(seed, iteration)
             if sea_state is not None:
                 ocean.set_significant_wave_height(sea_state)
@@ -251,21 +335,34 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
             ended = torch.zeros((), device=vec.device)
             successes = torch.zeros((), device=vec.device)
             returns = torch.zeros((), device=vec.device)
-            with torch.inference_mode():
-                obs = vec.get_observations()
-                for _ in range(config.steps_per_env):
-                    actions = alg.act(obs)
-                    obs, rewards, dones, extras = vec.step(actions)
-                    alg.process_env_step(obs, rewards, dones, extras)
-                    runner.logger.process_env_step(rewards, dones, extras, None)
-                    counted = dones.bool() & full_budget
-                    ended += counted.sum()
-                    successes += (buffers.final_success * counted).sum()
-                    returns += (buffers.final_return * counted).sum()
-                    full_budget |= dones.bool()
-                alg.compute_returns(obs)
+            failure = None
+            try:
+                with torch.inference_mode():
+                    obs = vec.get_observations()
+                    for _ in range(config.steps_per_env):
+                        actions = alg.act(obs)
+                        obs, rewards, dones, extras = vec.step(actions)
+                        alg.process_env_step(obs, rewards, dones, extras)
+                        runner.logger.process_env_step(rewards, dones, extras, None)
+                        counted = dones.bool() & full_budget
+                        ended += counted.sum()
+                        successes += (buffers.final_success * counted).sum()
+                        returns += (buffers.final_return * counted).sum()
+                        full_budget |= dones.bool()
+                    inject_fault(context, iteration, alg.storage.rewards)
+                    _check_finite(alg.storage, iteration)
+                    alg.compute_returns(obs)
+                local = [float(ended.item()), float(successes.item()), float(returns.item())]
+            except Exception as caught:
+                if not context.distributed:
+                    raise
+                if not isinstance(caught, NonFiniteBatch):
+                    _print_own_failure(context, caught)
+                failure, local = caught, [0.0, 0.0, 0.0]
             collect_time = time.perf_counter() - tic
             tic = time.perf_counter()
+            # Every rank's statistics, or every rank's failure, before the update's collectives.
+            count, success_sum, return_sum = ranks.gather_iteration(failure, local, f"at iteration {iteration}")
             losses = alg.update()
             learn_time = time.perf_counter() - tic
             runner.current_learning_iteration = iteration
@@ -274,10 +371,9 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
                                   collect_time=collect_time, learn_time=learn_time, loss_dict=losses,
                                   learning_rate=alg.learning_rate, action_std=alg.get_policy().output_std,
                                   rnd_weight=None)
-            count = float(ended.item())
-            success_rate = float(successes.item()) / count if count else float("nan")
-            mean_return = float(returns.item()) / count if count else float("nan")
-            curriculum.record(success_rate)
+            success_rate = success_sum / count if count else float("nan")
+            mean_return = return_sum / count if count else float("nan")
+            curriculum.record(success_rate)  # the same sums on every rank: the same level everywhere
             decisions_per_second = decisions_per_iteration / (collect_time + learn_time)
             row = {"iteration": iteration,
                    "samples": (history[-1]["samples"] if history else 0) + decisions_per_iteration,
@@ -295,9 +391,12 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
             _update_bar(bar, row)
             last = iteration == start_iteration + iterations - 1
             out_of_time = minutes is not None and time.perf_counter() - started >= 60.0 * minutes
+            if minutes is not None and context.distributed:
+                out_of_time = ranks.broadcast(out_of_time)  # rank 0's clock, or the ranks would part ways
             if (iteration + 1) % config.save_interval == 0 or last or out_of_time:
-                last_checkpoint = _save(run_dir, iteration, alg, config, env, curriculum, history, device)
-            _write_history(os.path.join(run_dir, "progress.csv"), history)
+                last_checkpoint = _save(run_dir, iteration, alg, config, env, curriculum, history, device, ranks)
+            if main_rank:
+                _write_history(os.path.join(run_dir, "progress.csv"), history)
             if out_of_time:
                 break
     finally:
@@ -307,25 +406,128 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
         with contextlib.redirect_stdout(io.StringIO()):
             runner.logger.stop_logging_writer()
     policy_path = os.path.join(run_dir, "policy.pt")
-    export_policy(read_checkpoint(last_checkpoint), policy_path)
+    if main_rank:
+        export_policy(read_checkpoint(last_checkpoint), policy_path)
+    checksums = _check_identical_parameters(ranks, alg, run_dir, device, num_envs)
     return TrainResult(run_dir=run_dir, checkpoint=last_checkpoint, policy=policy_path,
                        iterations=iteration - start_iteration + 1, wall_time=time.perf_counter() - started,
-                       history=history)
+                       history=history, world_size=context.world_size, parameter_checksums=checksums)
+
+
+class NonFiniteBatch(ValueError):
+    """NaN or infinity in a rank's collected batch (observations or rewards)."""
+
+
+def _check_finite(storage, iteration: int) -> None:
+    """Raise :class:`NonFiniteBatch` if the rollout holds NaN or infinity: caught before the update, it
+    never reaches the gradients or the normalisers (on any rank)."""
+    groups = [(f"observations[{name!r}]", tensor) for name, tensor in storage.observations.items()]
+    bad = [name for name, tensor in groups + [("rewards", storage.rewards)] if not bool(torch.isfinite(tensor).all())]
+    if bad:
+        raise NonFiniteBatch(f"NaN or infinity in the batch collected at iteration {iteration}: {', '.join(bad)}")
+
+
+def _print_own_failure(context: RankContext, error: BaseException) -> None:
+    """The failing rank's traceback on its own stderr (every rank then reports the failure in one line)."""
+    print(f"rank {context.rank}: {type(error).__name__} (traceback follows; every rank stops)", file=sys.stderr)
+    traceback.print_exception(error, file=sys.stderr)
+
+
+def _check_same_settings(ranks: Ranks, config: TrainConfig, device: str, seed: int, num_envs: int, iterations: int,
+                         minutes: float | None, resume: str | None, workers: int) -> None:
+    """Every rank must train the same thing (a launch across hosts can give them different arguments)."""
+    settings = json.dumps({"config": _jsonable(config), "seed": seed, "num_envs": num_envs, "iterations": iterations,
+                           "minutes": minutes, "resume": resume, "workers": workers,
+                           "device_type": device.split(":")[0]}, sort_keys=True)
+    digests = ranks.gather(hashlib.sha256(settings.encode()).hexdigest()[:12])
+    if len(set(digests)) > 1:
+        raise RankFailure("the ranks were started with different settings (settings digests by rank: "
+                          f"{', '.join(digests)}): give every rank the same arguments")
+
+
+def _read_resumed(ranks: Ranks, path: str, config: TrainConfig) -> dict:
+    """The checkpoint to resume from, read and checked by rank 0 and sent to every rank."""
+    if not ranks.distributed:
+        checkpoint = read_checkpoint(path)
+        _check_resumable(checkpoint, config, path)
+        return checkpoint
+    checkpoint, message = None, None
+    if ranks.context.is_main:
+        try:
+            checkpoint = read_checkpoint(path)
+            _check_resumable(checkpoint, config, path)
+        except CheckpointError as error:
+            message = str(error)
+    checkpoint, message = ranks.broadcast((checkpoint, message))
+    if message is not None:
+        raise CheckpointError(message)
+    return checkpoint
+
+
+def _random_state(device: str) -> dict[str, torch.Tensor]:
+    state = {"torch": torch.get_rng_state()}
+    if device.startswith("cuda"):
+        state["cuda"] = torch.cuda.get_rng_state(torch.device(device))
+    return state
+
+
+def _restore_random_state(checkpoint: dict, context: RankContext, device: str) -> None:
+    """Rank 0 takes the saved state; another rank its own, saved beside it when as many ranks trained the
+    checkpoint, else a seed derived from rank 0's state and its rank."""
+    saved = checkpoint.get("rank_rng_states", [])
+    if context.rank == 0:
+        state = {"torch": checkpoint["torch_rng_state"]}
+        if "cuda_rng_state" in checkpoint:
+            state["cuda"] = checkpoint["cuda_rng_state"]
+    elif int(checkpoint.get("world_size", 1)) == context.world_size and len(saved) == context.world_size - 1:
+        state = saved[context.rank - 1]
+    else:
+        torch.manual_seed(derived_seed(checkpoint["torch_rng_state"], context.rank))
+        return
+    torch.set_rng_state(state["torch"])
+    if device.startswith("cuda") and "cuda" in state:
+        torch.cuda.set_rng_state(state["cuda"], device=torch.device(device))
+
+
+def _check_identical_parameters(ranks: Ranks, alg, run_dir: str, device: str, num_envs: int) -> list[str] | None:
+    """Several ranks: every rank's checksum of its networks (normalisers included) and, on rank 0,
+    ``distributed.json`` recording them; :class:`RankFailure` on every rank if they differ."""
+    if not ranks.distributed:
+        return None
+    saved = alg.save()
+    checksums = ranks.gather(parameter_checksum(saved["actor_state_dict"], saved["critic_state_dict"]))
+    identical = len(set(checksums)) == 1
+    where = ranks.gather({"device": device, "host": host_name()})
+    if ranks.context.is_main:
+        _write_json(os.path.join(run_dir, "distributed.json"),
+                    {"world_size": ranks.context.world_size, "backend": ranks.backend, "num_envs_per_rank": num_envs,
+                     "ranks": where, "parameter_checksums": checksums, "identical_parameters": identical})
+    if not identical:
+        raise RankFailure(f"the ranks ended with different networks (checksums by rank: {', '.join(checksums)}); "
+                          "they did not start alike or their updates were not averaged alike")
+    return checksums
 
 
 def _save(run_dir: str, iteration: int, alg, config: TrainConfig, env: SailingEnv, curriculum: _Curriculum,
-          history: list[dict[str, float]], device: str) -> str:
+          history: list[dict[str, float]], device: str, ranks: Ranks) -> str:
+    """Write ``model_<iteration>.pt`` (rank 0; every rank gives its random state, so a resume by as many
+    ranks continues each rank's stream). Returns its path on every rank."""
     path = os.path.join(run_dir, f"model_{iteration}.pt")
+    states = ranks.gather(_random_state(device))
+    if not ranks.context.is_main:
+        return path
     payload = dict(alg.save())
     payload.update({
         "task": config.task, "observation": env.task.observation.value if hasattr(env.task.observation, "value")
         else str(env.task.observation), "num_obs": env.num_policy_obs, "num_actions": env.num_actions,
         "actor_config": config.ppo.actor_config(), "critic_config": config.ppo.critic_config(),
-        "iteration": iteration, "torch_rng_state": torch.get_rng_state(), "curriculum": curriculum.state(),
-        "history": history, "train_config": json.dumps(_jsonable(config)),
+        "iteration": iteration, "torch_rng_state": states[0]["torch"], "curriculum": curriculum.state(),
+        "history": history, "train_config": json.dumps(_jsonable(config)), "world_size": ranks.context.world_size,
     })
-    if device.startswith("cuda"):
-        payload["cuda_rng_state"] = torch.cuda.get_rng_state(torch.device(device))
+    if "cuda" in states[0]:
+        payload["cuda_rng_state"] = states[0]["cuda"]
+    if len(states) > 1:
+        payload["rank_rng_states"] = states[1:]
     save_checkpoint(path, payload)
     return path
 
@@ -425,9 +627,10 @@ def _parser() -> argparse.ArgumentParser:
         "logs, atomic checkpoints in runs/<task>/<date>_<name>/, the policy exported as policy.pt).",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("--task", default="EBoatWaypoint-v0", choices=list(AGENT_CONFIGS), help="task id")
-    parser.add_argument("--device", default="cpu", help="cpu, cuda or cuda:N (simulator and networks)")
+    parser.add_argument("--device", default=argparse.SUPPRESS,
+                        help="cpu, cuda or cuda:N (simulator and networks; default: cpu, or cuda with --gpus)")
     parser.add_argument("--num-envs", type=int, default=None,
-                        help="parallel boats (default: the task's, 256 on the CPU, 4096 on a GPU)")
+                        help="parallel boats per process (rank) (default: the task's, 256 on the CPU, 4096 on a GPU)")
     length = parser.add_argument_group("how long (either, or both: the first reached ends it)")
     length.add_argument("--iterations", type=int, default=None, help="PPO iterations (default: the task's)")
     length.add_argument("--minutes", type=float, default=None, help="wall-time limit")
@@ -443,26 +646,62 @@ def _parser() -> argparse.ArgumentParser:
                         help="CPU only: simulate the environments in this many processes, one core each "
                         "(default 1: in this process)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    ranks = parser.add_argument_group("several GPUs (torchrun; see ocean_warp.envs.distributed)")
+    ranks.add_argument("--gpus", default=None, metavar="G",
+                       help="train one policy on G GPUs of this host: starts torchrun with G ranks, each with "
+                       "--num-envs environments on its own GPU (default: this process, one device)")
+    ranks.add_argument("--dist-timeout", type=float, default=DEFAULT_TIMEOUT_S, metavar="SECONDS",
+                       help="with several ranks: the longest a rank waits for the others before the job stops")
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
+    """``ocean-warp train``: 0 on success, 2 for bad options or checkpoints, 1 when a rank failed (the
+    launcher: torchrun's status)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
     args = _parser().parse_args(argv)
+    device = getattr(args, "device", None)
+    if args.gpus is not None:
+        problem = gpus_problem(args.gpus, device, visible_gpus())
+        if problem is not None:
+            print(f"ocean-warp train: {problem}", file=sys.stderr)
+            return 2
+        if int(args.gpus) > 1:
+            return launch(torchrun_command(argv, int(args.gpus)), int(args.gpus))
+        device = "cuda"
+    try:
+        context = RankContext.from_env()
+    except ValueError as error:
+        print(f"ocean-warp train: {error}", file=sys.stderr)
+        return 2
     try:
         config = apply_overrides(agent_config(args.task), args.overrides)
         if args.minutes is not None and args.iterations is None:
             iterations = 10**9
         else:
             iterations = args.iterations
-        result = train(config, device=args.device, seed=args.seed, run_name=args.run_name, runs_root=args.runs_root,
-                       num_envs=args.num_envs, iterations=iterations, minutes=args.minutes, resume=args.resume,
-                       progress=not args.no_progress, workers=args.workers)
+        result = train(config, device=device or "cpu", seed=args.seed, run_name=args.run_name,
+                       runs_root=args.runs_root, num_envs=args.num_envs, iterations=iterations, minutes=args.minutes,
+                       resume=args.resume, progress=not args.no_progress, workers=args.workers, rank=context,
+                       dist_timeout=args.dist_timeout)
+    except RankFailure as error:
+        if context.is_main or not error.everywhere:  # the others hold the same message as rank 0
+            print(f"ocean-warp train: {error}", file=sys.stderr)
+        return 1
     except (CheckpointError, ValueError) as error:
-        print(f"ocean-warp train: {error}", file=sys.stderr)
+        print(f"ocean-warp train: {_rank_prefix(context)}{error}", file=sys.stderr)
         return 2
+    if not context.is_main:
+        return 0
     ended = [row for row in result.history if math.isfinite(row.get("success_rate", math.nan))]
     last = (f"last iteration with ended episodes ({ended[-1]['iteration']}): {_episode_summary(ended[-1])}"
             if ended else "no episode ended")
     print(f"{result.iterations} iterations in {result.wall_time:.0f} s; {last}")
     print(f"checkpoint {result.checkpoint}\npolicy     {result.policy}")
+    if result.parameter_checksums:
+        print(f"{result.world_size} ranks ended with identical networks (sha256 {result.parameter_checksums[0][:16]}...)")
     return 0
+
+
+def _rank_prefix(context: RankContext) -> str:
+    return f"rank {context.rank}: " if context.distributed else ""
