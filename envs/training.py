@@ -619,13 +619,22 @@ def _replace_path(obj: Any, names: list[str], value: Any, full: str) -> Any:
     return dataclasses.replace(obj, **{names[0]: value})
 
 
+class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Defaults shown where they say something: not None, not when the help already names the default."""
+
+    def _get_help_string(self, action):
+        if action.default is None or "default" in (action.help or ""):
+            return action.help
+        return super()._get_help_string(action)
+
+
 def _parser() -> argparse.ArgumentParser:
     from .agents import AGENT_CONFIGS
 
     parser = argparse.ArgumentParser(
         prog="ocean-warp train", description="Train a sailing policy with rsl-rl PPO (progress bar, TensorBoard "
         "logs, atomic checkpoints in runs/<task>/<date>_<name>/, the policy exported as policy.pt).",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=_HelpFormatter)
     parser.add_argument("--task", default="EBoatWaypoint-v0", choices=list(AGENT_CONFIGS), help="task id")
     parser.add_argument("--device", default=argparse.SUPPRESS,
                         help="cpu, cuda or cuda:N (simulator and networks; default: cpu, or cuda with --gpus)")
