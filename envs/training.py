@@ -495,9 +495,11 @@ def _check_identical_parameters(ranks: Ranks, alg, run_dir: str, device: str, nu
     if not ranks.distributed:
         return None
     saved = alg.save()
-    checksums = ranks.gather(parameter_checksum(saved["actor_state_dict"], saved["critic_state_dict"]))
+    mine = parameter_checksum(saved["actor_state_dict"], saved["critic_state_dict"])
+    gathered = ranks.gather((mine, {"device": device, "host": host_name()}))
+    checksums = [checksum for checksum, _ in gathered]
+    where = [place for _, place in gathered]
     identical = len(set(checksums)) == 1
-    where = ranks.gather({"device": device, "host": host_name()})
     if ranks.context.is_main:
         _write_json(os.path.join(run_dir, "distributed.json"),
                     {"world_size": ranks.context.world_size, "backend": ranks.backend, "num_envs_per_rank": num_envs,
