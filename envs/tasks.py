@@ -17,7 +17,7 @@ import dataclasses
 import enum
 import math
 
-from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Hydrostatics
+from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Hydrostatics, Profile
 from ocean_warp.ocean_config import OceanConfig
 from ocean_warp.sensors import SensorConfig
 from ocean_warp.validation import require_choice, require_in_range, require_non_negative, require_positive
@@ -170,12 +170,20 @@ def mission_sea() -> OceanConfig:
     return OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=0.3, peak_period=3.0)
 
 
+def shipped_policy_boat() -> EBoatConfig:
+    """The boat the shipped policies and the autopilot's tuning were made on: the mesh hull with Kerner's
+    pressure drag on the whole flow and the sheet's foil tables for keel and rudder (the seed profile's
+    forces on the mesh hull; the simulator's default before the physics profile). The tasks keep it until
+    their policies are retrained on the physics profile."""
+    return EBoatConfig(profile=Profile.SEED, hydrostatics=Hydrostatics.MESH)
+
+
 @dataclasses.dataclass(frozen=True)
 class TaskConfig:
     """A sailing task: the simulation, the route, the start distribution, the observation and the reward."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        ocean=_seed_sea(), sensors=SensorConfig.noise_free()))
+        boat=shipped_policy_boat(), ocean=_seed_sea(), sensors=SensorConfig.noise_free()))
     """Boat, sea, wind gusts, sensors, water and time step (dt, substeps)."""
     decision_period: float = 1.0
     """Simulated time per decision [s] (the seed: 1-5 s); a whole number of ``simulator.dt``."""
@@ -257,7 +265,7 @@ class WaypointConfig(TaskConfig):
     lets this task train on a laptop's CPU. The seed gave no time limit; ours is 600 s."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        boat=EBoatConfig(hydrostatics=Hydrostatics.POINTS), ocean=_seed_sea(), sensors=SensorConfig.noise_free(),
+        boat=EBoatConfig(profile=Profile.SEED), ocean=_seed_sea(), sensors=SensorConfig.noise_free(),
         water_density=997.0, ocean_every_substep=False))
 
 
@@ -268,7 +276,8 @@ class WaypointPlusConfig(TaskConfig):
     the waypoint (50-150 m, any bearing); a choppy sea; a 300 s time limit; a penalty on jerky actuation."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        ocean=waypoint_plus_sea(), wind=WindConfig(gust_speed_std=1.0, gust_direction_std=0.1)))
+        boat=shipped_policy_boat(), ocean=waypoint_plus_sea(),
+        wind=WindConfig(gust_speed_std=1.0, gust_direction_std=0.1)))
     episode_time: float = 300.0
     observation: ObservationSet | str = ObservationSet.PLUS
     start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
@@ -287,7 +296,8 @@ class MissionConfig(TaskConfig):
     lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        ocean=mission_sea(), wind=WindConfig(speed=10.0, direction=0.0, gust_speed_std=1.0, gust_direction_std=0.1),
+        boat=shipped_policy_boat(), ocean=mission_sea(),
+        wind=WindConfig(speed=10.0, direction=0.0, gust_speed_std=1.0, gust_direction_std=0.1),
         sensors=SensorConfig.noise_free()))
     episode_time: float = 1800.0
     route: tuple[tuple[float, float], ...] | None = BCDACA_ROUTE

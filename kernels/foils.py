@@ -31,9 +31,10 @@ class FoilTables:
 
     sail_lift: wp.array(dtype=float)
     sail_drag: wp.array(dtype=float)
-    foil_lift: wp.array(dtype=float)
-    """Keel and rudder."""
-    foil_drag: wp.array(dtype=float)
+    keel_lift: wp.array(dtype=float)
+    keel_drag: wp.array(dtype=float)
+    rudder_lift: wp.array(dtype=float)
+    rudder_drag: wp.array(dtype=float)
 
 
 @wp.func

@@ -40,6 +40,7 @@ __all__ = [
     "hull_wrenches_kernel",
     "sample_origin_water",
     "MAX_HULL_VERTICES",
+    "residuary_wrench",
 ]
 
 # Triangles (or clipped pieces) smaller than this [m^2] carry no force: their normal is undefined.
@@ -70,6 +71,16 @@ class HullMeshes:
     """Per hull type: total triangle area [m^2] (slamming shares the mass by area)."""
     mass: wp.array(dtype=float)
     """Per hull type: the boat's mass [kg] (slamming)."""
+    residuary_length: wp.array(dtype=float)
+    """Per hull type: Lwl [m] of its residuary resistance's Froude number; 0: the type has none."""
+    residuary_volume: wp.array(dtype=float)
+    """Per hull type: displaced volume at rest [m^3] that scales its residuary resistance."""
+    residuary_center: wp.array(dtype=wp.vec3)
+    """Per hull type: where the residuary resistance acts [m]."""
+    residuary_upright: wp.array(dtype=float)
+    """RESIDUARY_SAMPLES values per hull type: Rr / (volume rho g) at Fn = 0, RESIDUARY_STEP, ..."""
+    residuary_heel: wp.array(dtype=float)
+    """The same layout: its increase at 20 deg of heel (scaled by 6 phi^1.7)."""
 
 
 @wp.struct
@@ -97,6 +108,11 @@ class WaterModel:
     suction_falloff: float
     """Exponent of |cos t| (dimensionless)."""
     skin_friction: int
+    friction_factor: float
+    """(1 + k): the form factor on the ITTC-1957 friction (dimensionless)."""
+    cross_flow_only: int
+    """1: pressure drag and suction see only the flow across the hull (its body-x part removed), forward
+    resistance being friction and residuary resistance; 0: they see the whole flow (Kerner)."""
     slamming: int
     slamming_power: float
     """p of the slamming ramp (dimensionless)."""
@@ -156,18 +172,23 @@ def submerged_piece_wrench(
     relative = velocity + wp.cross(angular_velocity, centroid) - (u0 + u1 + u2) / 3.0
     speed = wp.length(relative)
     if speed > MIN_FLOW_SPEED:
-        cos_t = wp.dot(normal, relative) / speed
-        s = speed * water.inverse_reference_speed
         drag = wp.vec3()
-        if cos_t > 0.0:
-            pressure = (water.pressure_drag_linear + water.pressure_drag_quadratic * s) * s
-            drag = -(pressure * falloff(cos_t, water.pressure_drag_falloff) * area) * normal
-        else:
-            pressure = (water.suction_linear + water.suction_quadratic * s) * s
-            drag = (pressure * falloff(-cos_t, water.suction_falloff) * area) * normal
+        flow = relative
+        if water.cross_flow_only != 0:
+            flow = wp.vec3(0.0, relative[1], relative[2])
+        flow_speed = wp.length(flow)
+        if flow_speed > MIN_FLOW_SPEED:
+            cos_t = wp.dot(normal, flow) / flow_speed
+            s = flow_speed * water.inverse_reference_speed
+            if cos_t > 0.0:
+                pressure = (water.pressure_drag_linear + water.pressure_drag_quadratic * s) * s
+                drag = -(pressure * falloff(cos_t, water.pressure_drag_falloff) * area) * normal
+            else:
+                pressure = (water.suction_linear + water.suction_quadratic * s) * s
+                drag = (pressure * falloff(-cos_t, water.suction_falloff) * area) * normal
         if water.skin_friction != 0:
             tangential = relative - wp.dot(relative, normal) * normal
-            drag -= (0.5 * water.density * friction * area * wp.length(tangential)) * tangential
+            drag -= (0.5 * water.density * water.friction_factor * friction * area * wp.length(tangential)) * tangential
         force += drag
         moment += wp.cross(centroid, drag)
     return wrench(force, moment)
@@ -296,6 +317,43 @@ def _submerged_area(r0: wp.vec3, r1: wp.vec3, r2: wp.vec3, d0: float, d1: float,
     if submerged == 1:
         return area * corner_fraction
     return area * (1.0 - corner_fraction)
+
+
+RESIDUARY_STEP = wp.constant(0.05)
+"""Froude-number spacing of the residuary tables (``ocean_warp.resistance.FROUDE_STEP``)."""
+RESIDUARY_SAMPLES = wp.constant(16)
+"""Entries per hull type (``ocean_warp.resistance.FROUDE_SAMPLES``)."""
+MAX_RESIDUARY_FROUDE = wp.constant(1.0)
+"""The tables' last slope is extended to this Froude number, and held there."""
+
+
+@wp.func
+def _residuary_at(table: wp.array(dtype=float), first: int, froude: float) -> float:
+    """Linear interpolation of one hull type's table at ``froude``, its last slope extended beyond."""
+    position = wp.min(froude, MAX_RESIDUARY_FROUDE) / RESIDUARY_STEP
+    lower = wp.min(int(position), RESIDUARY_SAMPLES - 2)
+    fraction = position - float(lower)
+    return table[first + lower] + fraction * (table[first + lower + 1] - table[first + lower])
+
+
+@wp.func
+def residuary_wrench(meshes: HullMeshes, kind: int, surge: float, rotation: wp.quat, water: WaterModel) -> vec6:
+    """Residuary (wave-making) resistance of hull type ``kind`` moving ahead or astern at ``surge`` [m/s]
+    through the water, heeled as ``rotation`` says: volume rho g (r(Fn) + dr20(Fn) 6 phi^1.7) against the
+    motion, at the type's centre (see ``ocean_warp.resistance``). Zero for a type without tables."""
+    length = meshes.residuary_length[kind]
+    if length <= 0.0:
+        return vec6()
+    froude = wp.abs(surge) / wp.sqrt(water.gravity * length)
+    first = kind * RESIDUARY_SAMPLES
+    up = wp.quat_rotate(rotation, wp.vec3(0.0, 0.0, 1.0))
+    heel = wp.acos(wp.clamp(up[2], -1.0, 1.0))
+    ratio = _residuary_at(meshes.residuary_upright, first, froude)
+    if heel > 0.0:
+        ratio += _residuary_at(meshes.residuary_heel, first, froude) * 6.0 * wp.pow(heel, 1.7)
+    magnitude = meshes.residuary_volume[kind] * water.density * water.gravity * wp.max(ratio, 0.0)
+    direction = wp.where(surge < 0.0, 1.0, -1.0)
+    return wrench_at(wp.vec3(direction * magnitude, 0.0, 0.0), meshes.residuary_center[kind])
 
 
 # Marks a triangle whose swept rate is not known yet (a fresh or reset boat): it cannot slam.
@@ -448,6 +506,7 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
                                          meshes.surface_area[kind], swept_rate, triangle_offset[boat] + t, water)
         summed = wp.tile_sum(wp.tile(total, preserve_type=True))
         if lane == 0:
-            wrench[boat] = summed[0]
+            surge = linear[0] - flow_at_origin[0]
+            wrench[boat] = summed[0] + residuary_wrench(meshes, kind, surge, rotation, water)
 
     return hull_wrenches

@@ -167,12 +167,12 @@ def sailing_rig(
     # Keel and rudder in the water (its orbital velocity at the boat, body frame).
     water = water_velocity[boat]
     keel_force = scale[1] * _force(foil_force(water - point_velocity(nu, rig.keel_center), wp.vec3(-1.0, 0.0, 0.0),
-                                              down, rig.keel_area, rig.water_density, tables.foil_lift,
-                                              tables.foil_drag, rig.foil_lift_limit))
+                                              down, rig.keel_area, rig.water_density, tables.keel_lift,
+                                              tables.keel_drag, rig.foil_lift_limit))
     rudder_chord = wp.vec3(-wp.cos(rudder), wp.sin(rudder), 0.0)
     rudder_force = scale[2] * _force(foil_force(water - point_velocity(nu, rig.rudder_center), rudder_chord, down,
-                                                rig.rudder_area, rig.water_density, tables.foil_lift,
-                                                tables.foil_drag, rig.foil_lift_limit))
+                                                rig.rudder_area, rig.water_density, tables.rudder_lift,
+                                                tables.rudder_drag, rig.foil_lift_limit))
     if rig.original_tuning != 0:
         rudder_force = 0.3 * rudder_force
         keel_force = keel_force - wp.vec3(0.0, 0.6 * sail_force[1], 0.0)

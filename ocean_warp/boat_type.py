@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 
 from .hull import Hull
+from .resistance import ResiduaryResistance
 
 __all__ = ["BoatType", "skew", "parallel_axis_term"]
 
@@ -72,6 +73,9 @@ class BoatType:
     """Diagonal quadratic damping, force -d |nu_r| nu_r [N s^2/m^2, N m s^2/rad^2]."""
     astern_surge_factor: float = 1.0
     """Surge damping (linear and quadratic) is this many times larger when moving astern (E-Boat: 1.3)."""
+    residuary: ResiduaryResistance | None = None
+    """The hull's residuary (wave-making) resistance, applied by the hull pass; None: none (a hull without
+    one relies on the per-triangle drag, see ``HydrodynamicsConfig.cross_flow_only``)."""
     name: str = ""
 
     def __post_init__(self):
@@ -102,6 +106,8 @@ class BoatType:
         if isinstance(factor, bool) or not isinstance(factor, (int, float)) or not np.isfinite(factor) or factor <= 0:
             raise ValueError(f"{owner}.astern_surge_factor must be a finite number > 0, got {factor!r}")
         object.__setattr__(self, "astern_surge_factor", float(factor))
+        if self.residuary is not None and not isinstance(self.residuary, ResiduaryResistance):
+            raise ValueError(f"{owner}.residuary must be a ResiduaryResistance or None, got {self.residuary!r}")
         if np.linalg.eigvalsh(self.mass_matrix).min() <= 0:
             raise ValueError(f"{owner}: the mass matrix M_RB + M_A is not positive definite; check added_mass")
         if not self.name:

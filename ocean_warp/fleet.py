@@ -10,6 +10,7 @@ import warp as wp
 
 from .boat_type import BoatType
 from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, HullMeshes
+from .resistance import FROUDE_SAMPLES
 from .kernels.rigid_body import (
     STATUS_BAD_INPUT,
     STATUS_CAPSIZED,
@@ -225,7 +226,22 @@ def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:
     meshes.reference_length = wp.array([h.length for h in hulls], dtype=float, device=device)
     meshes.surface_area = wp.array([h.surface_area for h in hulls], dtype=float, device=device)
     meshes.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
+    _add_residuary_tables(meshes, boat_types, device)
     return meshes
+
+
+def _add_residuary_tables(meshes: HullMeshes, boat_types: list[BoatType], device) -> None:
+    """Each type's residuary-resistance tables (zeros and a length of 0 for a type without one)."""
+    none = [0.0] * FROUDE_SAMPLES
+    models = [t.residuary for t in boat_types]
+    meshes.residuary_length = wp.array([m.waterline_length if m else 0.0 for m in models], dtype=float, device=device)
+    meshes.residuary_volume = wp.array([m.displaced_volume if m else 0.0 for m in models], dtype=float, device=device)
+    meshes.residuary_center = wp.array(np.array([m.center if m else (0.0, 0.0, 0.0) for m in models]),
+                                       dtype=wp.vec3, device=device)
+    meshes.residuary_upright = wp.array(np.concatenate([m.upright if m else none for m in models]), dtype=float,
+                                        device=device)
+    meshes.residuary_heel = wp.array(np.concatenate([m.heel_increase if m else none for m in models]), dtype=float,
+                                     device=device)
 
 
 def _triangles_by_side_and_height(hull) -> np.ndarray:

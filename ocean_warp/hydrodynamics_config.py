@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from .validation import require_non_negative, require_positive
+from .validation import require_in_range, require_non_negative, require_positive
 
 __all__ = ["HydrodynamicsConfig"]
 
@@ -24,6 +24,11 @@ class HydrodynamicsConfig:
       boat's speed through the water U and the hull length L (Re held at >= 1e5, where the line is
       defined);
     - optional slamming on triangles entering the water (Kerner's model; off by default).
+
+    With ``cross_flow_only`` the pressure drag and suction see only the flow across the hull (its body-x
+    part removed): they then damp sway, heave, roll, pitch and yaw, while a streamlined hull moving
+    ahead meets friction (times the form factor 1 + k) and, for a boat type that has one, the residuary
+    resistance of ``ocean_warp.resistance``, not a bluff body's ram pressure.
 
     v is the velocity of the piece's centroid relative to the water's orbital velocity there. The
     default drag coefficients amount to a ram pressure of about 1/2 rho v^2 (drag coefficient 1) at
@@ -52,6 +57,10 @@ class HydrodynamicsConfig:
     """f_S, exponent of |cos t| in the suction."""
     skin_friction: bool = True
     """Apply the ITTC-1957 viscous friction."""
+    form_factor: float = 0.0
+    """k: the friction is (1 + k) times the flat plate's (dimensionless, 0 to 1)."""
+    cross_flow_only: bool = False
+    """Pressure drag and suction on the cross flow only (see above); False: on the whole relative flow."""
     slamming: bool = False
     """Apply Kerner's slamming force to triangles whose submerged swept volume grows fast."""
     slamming_power: float = 2.0
@@ -68,7 +77,8 @@ class HydrodynamicsConfig:
         for name in ("pressure_drag_linear", "pressure_drag_quadratic", "pressure_drag_falloff", "suction_linear",
                      "suction_quadratic", "suction_falloff", "slamming_power"):
             object.__setattr__(self, name, require_non_negative(owner, name, getattr(self, name)))
-        for name in ("skin_friction", "slamming"):
+        object.__setattr__(self, "form_factor", require_in_range(owner, "form_factor", self.form_factor, 0.0, 1.0))
+        for name in ("skin_friction", "slamming", "cross_flow_only"):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"{owner}.{name} must be True or False, got {getattr(self, name)!r}")
 

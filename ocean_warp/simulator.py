@@ -182,6 +182,8 @@ def _water_model(config: HydrodynamicsConfig, substep: float) -> WaterModel:
     water.suction_quadratic = config.suction_quadratic
     water.suction_falloff = config.suction_falloff
     water.skin_friction = int(config.skin_friction)
+    water.friction_factor = 1.0 + config.form_factor
+    water.cross_flow_only = int(config.cross_flow_only)
     water.slamming = int(config.slamming)
     water.slamming_power = config.slamming_power
     water.inverse_slamming_max_acceleration = 1.0 / config.slamming_max_acceleration

@@ -14,6 +14,7 @@ from benchmarks.autopilot_mission import run_mission
 from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.envs.autopilot import AutopilotConfig, SailingAutopilot
 from ocean_warp.envs.task_kernels import apply_actions
+from ocean_warp.envs.tasks import shipped_policy_boat
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 from ocean_warp.wind import WindConfig
 
@@ -174,7 +175,8 @@ def test_act_in_captured_graph(device):
 def sail(device, starts, headings, targets, seconds, *, wind=10.0, config=None):
     """Sail boats in still water and a steady wind towards +x with the autopilot; returns per-decision
     (heading, course, position, status) arrays and the pilot."""
-    sim_config = EBoatSimulatorConfig(wind=WindConfig(speed=wind, direction=0.0))
+    # The autopilot's gains were tuned on the boat the tasks sail (the seed's forces on the mesh hull).
+    sim_config = EBoatSimulatorConfig(boat=shipped_policy_boat(), wind=WindConfig(speed=wind, direction=0.0))
     n = len(starts)
     sim = EBoatSimulator(sim_config, n, device=device)
     config = config if config is not None else AutopilotConfig()

@@ -1,7 +1,7 @@
 """The E-Boat digital twin: a 2.5 m autonomous sailing robot (sail on a boom, keel, rudder, electric
 propeller), rebuilt from the data sheet of its original Gazebo model."""
 
-from .eboat import EBoat, EBoatConfig, Hydrostatics, eboat_hydrodynamics, load_foil_table
+from .eboat import EBoat, EBoatConfig, Hydrostatics, Profile, eboat_hydrodynamics, load_foil_table
 from .hull_shape import HullShape, eboat_hull
 from .mass_properties import MassProperties, eboat_mass_properties
 from .sheet import Version
@@ -9,6 +9,6 @@ from .simulator import EBoatSimulator, SailingRig
 from .simulator_config import EBoatSimulatorConfig, still_water
 from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
 
-__all__ = ["EBoat", "EBoatConfig", "Hydrostatics", "Version", "EBoatSimulator", "EBoatSimulatorConfig", "EBoatState",
+__all__ = ["EBoat", "EBoatConfig", "Hydrostatics", "Profile", "Version", "EBoatSimulator", "EBoatSimulatorConfig", "EBoatState",
            "EBoatControl", "EBoatStart", "EBoatTensors", "SailingRig", "HullShape", "eboat_hull", "MassProperties",
            "eboat_mass_properties", "load_foil_table", "eboat_hydrodynamics", "still_water"]

@@ -92,6 +92,10 @@ LINK_MASS_DIFFERENCE_V_A = -4.2
 V-A takes it off the hull shell, at the hull's centre of mass (assumed)."""
 
 
+KEEL_LINE_Z = -0.22
+"""Lowest point of the hull's keel line [m], where the keel fin leaves the hull (``HullShape.keel_z``)."""
+
+
 @dataclasses.dataclass(frozen=True)
 class FoilFigures:
     """Areas and centres of effort of the sail, keel and rudder."""
@@ -102,17 +106,44 @@ class FoilFigures:
     """Sheet: 0.23779 m^2 (V-C), 0.2 (V-B; the sheet gives no V-A figure, taken as V-B's)."""
     rudder_area: float
     """Sheet: 0.10064 m^2 (V-C), 0.2 (V-A, V-B)."""
+    keel_span: float = 0.854
+    """Wetted span of the keel fin [m]: from the hull's keel line (z = -0.22 m) to the bottom of the sheet's
+    keel box (joint at z 0.2146 m, CoM 0.725 m below it, box 1.127 m tall: z = -1.074 m)."""
+    keel_taper: float = 0.8
+    """Tip over root chord of the keel (assumed, as in the VPP inputs' 0.1927 / 0.24)."""
+    rudder_chord: float = 0.189
+    """Sheet: the rudder box is 0.189 m long; its span is the area over this chord."""
     sail_center_height: float = 1.5
     """Sheet: centre of effort (-0.012, 0, 1.5) m in the base frame."""
     sail_arm: float = 0.59
     """Sheet: the aerodynamic moment about the mast has an arm of 0.59 m; the centre of effort is placed
     this far aft of the mast along the boom (1.7 cm from the sheet's x = -0.012 at zero boom angle)."""
     keel_center: tuple[float, float, float] = (-0.135, 0.0, -0.40)
-    """Centre of effort of the keel fin [m]: under the keel joint, at mid-depth of the fin (assumed)."""
+    """Centre of effort of the keel fin [m]: under the keel joint (sheet); its depth is the seed profile's
+    assumption (mid-depth), the physics profile puts it at the fin's area centroid (``keel_center_of_area``)."""
     rudder_center: tuple[float, float, float] = (-1.086, 0.0, -0.16)
     """Centre of effort of the rudder [m]: under its joint (sheet), at mid-depth of its wetted part (assumed)."""
     boom_damping: float = 0.5
     """Sheet (V-C): boom joint damping [N m s/rad]."""
+
+    @property
+    def keel_chords(self) -> tuple[float, float]:
+        """(root, tip) chords [m] of a trapezoid of ``keel_area`` on ``keel_span`` with ``keel_taper``."""
+        root = 2.0 * self.keel_area / (self.keel_span * (1.0 + self.keel_taper))
+        return root, root * self.keel_taper
+
+    @property
+    def keel_center_of_area(self) -> tuple[float, float, float]:
+        """The keel's centre of effort at its area centroid [m]: span/3 (root + 2 tip)/(root + tip) below the
+        hull's keel line (z = -0.22 m), under the keel joint."""
+        root, tip = self.keel_chords
+        depth = self.keel_span / 3.0 * (root + 2.0 * tip) / (root + tip)
+        return (self.keel_center[0], 0.0, KEEL_LINE_Z - depth)
+
+    @property
+    def rudder_span(self) -> float:
+        """[m]: area over chord."""
+        return self.rudder_area / self.rudder_chord
 
 
 FOILS = {

@@ -42,9 +42,9 @@ class EBoatSimulatorConfig:
     """Mean wind, gusts and height profile (every environment starts with this mean)."""
     sensors: SensorConfig = dataclasses.field(default_factory=SensorConfig)
     """Noise and rates of the boat's sensors."""
-    hydrodynamics: HydrodynamicsConfig = dataclasses.field(default_factory=eboat_hydrodynamics)
-    """The per-triangle water model (default: tuned for the E-Boat's hull). Its ``water_density`` and
-    ``gravity`` are replaced by the fields below."""
+    hydrodynamics: HydrodynamicsConfig | None = None
+    """The per-triangle water model; None (default): the boat profile's (``eboat_hydrodynamics``). Its
+    ``water_density`` and ``gravity`` are replaced by the fields below."""
     water_density: float = 1025.0
     """[kg/m^3] of the water for hull, keel, rudder and buoyancy alike (sea water; the original twin: 997)."""
     gravity: float = 9.81
@@ -76,6 +76,8 @@ class EBoatSimulatorConfig:
 
     def __post_init__(self):
         owner = "EBoatSimulatorConfig"
+        if self.hydrodynamics is None and isinstance(self.boat, EBoatConfig):
+            object.__setattr__(self, "hydrodynamics", eboat_hydrodynamics(self.boat.profile))
         for name, kind in (("boat", EBoatConfig), ("ocean", OceanConfig), ("wind", WindConfig),
                            ("sensors", SensorConfig), ("hydrodynamics", HydrodynamicsConfig)):
             if not isinstance(getattr(self, name), kind):
