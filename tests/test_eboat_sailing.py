@@ -69,7 +69,9 @@ def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
     wrench = sim.fleet.hydro_wrench.numpy() + sim.fleet.model_wrench.numpy()
     scale = np.abs(wrench[0]).max()
     np.testing.assert_allclose(wrench[1], wrench[0] * flip_force, atol=1e-4 * scale)
-    state = run(sim, 8.0)
+    # 4 s: on the physics profile a difference of rounding grows about 2x per 0.5 s in some states (rng seed
+    # 1935798459: 1e-6 -> 7e-3 rad/s of roll rate over 8 s, from 1e-6 at the start: no asymmetry of the model).
+    state = run(sim, 4.0)
     np.testing.assert_allclose(state["velocity"][1], state["velocity"][0] * flip_force, atol=2e-3)
     angles = roll_pitch_yaw(state["orientation"])
     # float32 rounding differs between the mirror images and grows over 8 s (seed 1161472301: 2.9e-3 rad of yaw)
