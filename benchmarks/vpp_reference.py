@@ -64,13 +64,13 @@ import contextlib
 import csv
 import json
 import math
-import os
-import tempfile
 import time
 import warnings
 from pathlib import Path
 
 import numpy as np
+
+from ocean_warp.atomic_files import atomic_output
 
 REPO = Path(__file__).resolve().parents[1]
 DEFAULT_INPUTS = REPO.parent / "shared/eboat/vpp_inputs.json"
@@ -286,21 +286,12 @@ def best_upwind(yacht, hydro_cls, aero_cls, flat_min, phi_max, speed, refine):
 # Output.
 
 def _atomic_write_csv(path: Path, header, rows):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", newline="") as f:
-            writer = csv.writer(f)
-            writer.writerow(header)
-            for row in rows:
-                writer.writerow(["nan" if isinstance(v, float) and math.isnan(v) else
-                                 (f"{v:.6g}" if isinstance(v, float) else v) for v in row])
-        os.chmod(tmp, 0o644)  # mkstemp makes it 0600
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
+    with atomic_output(path) as temporary, open(temporary, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(header)
+        for row in rows:
+            writer.writerow(["nan" if isinstance(v, float) and math.isnan(v) else
+                             (f"{v:.6g}" if isinstance(v, float) else v) for v in row])
 
 
 def write_figure(path: Path, speed, resistance, package_resistance):
@@ -331,17 +322,9 @@ def write_figure(path: Path, speed, resistance, package_resistance):
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=".png")
-    os.close(fd)
     try:
-        fig.savefig(tmp, dpi=120, format="png")
-        os.chmod(tmp, 0o644)  # mkstemp makes it 0600
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
+        with atomic_output(path) as temporary:
+            fig.savefig(temporary, dpi=120, format="png")
     finally:
         plt.close(fig)
 

@@ -21,13 +21,11 @@ which the hull kernel interpolates per boat (see ``kernels.hull_forces.residuary
 from __future__ import annotations
 
 import dataclasses
-import math
-
 import numpy as np
 
 from .hull_form import HullForm
 from .kernels.hull_forces import RESIDUARY_SAMPLES, RESIDUARY_STEP
-from .validation import require_finite, require_non_negative, require_positive
+from .validation import require_finite, require_positive
 
 __all__ = ["ResiduaryResistance", "ittc_1957", "delft_bare_hull", "delft_heel_increase", "FROUDE_STEP",
            "FROUDE_SAMPLES", "DEFAULT_FORM_FACTOR"]
@@ -153,18 +151,3 @@ class ResiduaryResistance:
         heel = _resample(*delft_heel_increase(form))
         return cls(waterline_length=form.waterline_length, displaced_volume=form.displaced_volume,
                    upright=tuple(upright), heel_increase=tuple(heel), center=form.center_of_buoyancy)
-
-    def force(self, speed, heel=0.0, *, density: float = 1025.0, gravity: float = 9.81) -> np.ndarray:
-        """Resistance [N] at ``speed`` through the water [m/s] and ``heel`` [rad] (numpy reference of what
-        the kernel does; speeds of either sign give a force >= 0)."""
-        require_non_negative("ResiduaryResistance.force", "density", density)
-        froude = np.minimum(np.abs(np.asarray(speed, dtype=np.float64)) / math.sqrt(gravity * self.waterline_length),
-                            1.0)
-        grid = FROUDE_STEP * np.arange(FROUDE_SAMPLES)
-        def at(table):
-            table = np.asarray(table)
-            slope = (table[-1] - table[-2]) / FROUDE_STEP
-            return np.where(froude > grid[-1], table[-1] + slope * (froude - grid[-1]), np.interp(froude, grid, table))
-        heel_factor = 6.0 * np.abs(np.asarray(heel, dtype=np.float64)) ** 1.7
-        return self.displaced_volume * density * gravity * np.maximum(at(self.upright) + at(self.heel_increase)
-                                                                      * heel_factor, 0.0)

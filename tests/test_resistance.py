@@ -10,7 +10,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import warp as wp
 
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Profile
@@ -202,4 +201,3 @@ def test_profiles_and_bad_input():
         measure_hull_form(physics.hull, 5.0)
     with pytest.raises(ValueError, match="residuary"):
         ow.BoatType(hull=physics.hull, mass=100.0, residuary="delft")
-    wp.synchronize()
