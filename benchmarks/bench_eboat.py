@@ -36,10 +36,11 @@ SUBSTEPS = 5
 
 
 def build(device, boats: int, ocean_every_substep: bool, choppiness: float, seed: int = 0,
-          hull_triangles: int | None = None) -> EBoatSimulator:
+          hull_triangles: int | None = None, boat: EBoatConfig | None = None) -> EBoatSimulator:
+    """``boat`` (default: the physics profile with ``hull_triangles``) replaces the boat's config."""
     rng = np.random.default_rng(seed)
     config = EBoatSimulatorConfig(
-        boat=EBoatConfig(hull_triangles=hull_triangles),
+        boat=boat if boat is not None else EBoatConfig(hull_triangles=hull_triangles),
         ocean=ow.OceanConfig(tile_size=512.0, resolution=512, significant_wave_height=1.0, peak_period=5.0,
                              choppiness=choppiness, seed=seed),
         wind=ow.WindConfig(speed=7.0, gust_speed_std=1.0, gust_direction_std=0.1),

@@ -1,11 +1,12 @@
 """Reinforcement-learning environments on the E-Boat simulator (installed as ``ocean_warp.envs``).
 
 - ``SailingEnv`` (``core``): N boats, one task, one captured decision step with same-step resets.
-- Tasks (``tasks``): ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours) and
-  ``MissionConfig`` (the six-waypoint "BCDACA" mission).
+- Tasks (``tasks``): ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours),
+  ``MissionConfig`` (the six-waypoint "BCDACA" mission) and ``MissionSailConfig`` (the mission with the
+  propeller off).
 - Interfaces: ``RslRlVecEnv`` (rsl-rl), ``SailingVectorEnv`` and ``SailingEnvSingle`` (gymnasium, with the
-  ids ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0`` and
-  ``ocean_warp/EBoatMission-v0``), ``Sb3VecEnv`` (stable-baselines3, an optional extra:
+  ids ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``, ``ocean_warp/EBoatMission-v0``
+  and ``ocean_warp/EBoatMissionSail-v0``), ``Sb3VecEnv`` (stable-baselines3, an optional extra:
   ``ocean_warp.envs.sb3_env``).
 - ``SailingAutopilot``: a classical sailing autopilot that runs any task in place of a policy.
 """
@@ -15,6 +16,7 @@ from .tasks import (
     BCDACA_ROUTE,
     MISSION_WAYPOINTS,
     MissionConfig,
+    MissionSailConfig,
     ObservationSet,
     RewardConfig,
     StartConfig,
@@ -24,7 +26,7 @@ from .tasks import (
 )
 
 __all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
+           "MissionConfig", "MissionSailConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
 
 from .gym_env import SailingEnvSingle, SailingVectorEnv
 from .registration import TASK_IDS, make_task_config, register_envs

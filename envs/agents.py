@@ -16,7 +16,7 @@ from typing import Any
 from ocean_warp.validation import require_in_range, require_int_in_range, require_positive
 
 from .registration import make_task_config
-from .tasks import MissionConfig, StartConfig, TaskConfig, WaypointPlusConfig
+from .tasks import MissionConfig, MissionSailConfig, StartConfig, TaskConfig, WaypointPlusConfig
 
 __all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice"]
 
@@ -155,11 +155,12 @@ class TrainConfig:
         return self.num_envs_cuda if device_is_cuda else self.num_envs_cpu
 
 
-def mission_practice() -> MissionConfig:
-    """Single legs for the mission: from rest or under way, any heading, to one waypoint 50-150 m away at
-    any bearing to a gusty 8-12 m/s wind (the mission's legs are 100 and 141 m, reached, run and
-    beaten), on the mission's boat and sea, with the boat's mass and foils varied by 5 %."""
-    base = MissionConfig()
+def mission_practice(base: MissionConfig | None = None) -> MissionConfig:
+    """Single legs for the mission ``base`` (default ``MissionConfig()``; ``MissionSailConfig()`` for the
+    sail-only one): from rest or under way, any heading, to one waypoint 50-150 m away at any bearing to a
+    gusty 8-12 m/s wind (the mission's legs are 100 and 141 m, reached, run and beaten), on the mission's
+    boat and sea, with the boat's mass and foils varied by 5 %."""
+    base = base if base is not None else MissionConfig()
     start = StartConfig(heading_deg=(-180.0, 180.0), heading_step_deg=0.0, wind_speed=(8.0, 12.0),
                         wind_direction_deg=(-180.0, 180.0), wind_direction_step_deg=0.0, gust_scale=(0.5, 1.5),
                         waypoint_distance=(50.0, 150.0), waypoint_bearing_deg=(-180.0, 180.0), position_jitter=1.0,
@@ -185,10 +186,15 @@ def _mission() -> TrainConfig:
                        curriculum=CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0.75))
 
 
+def _mission_sail() -> TrainConfig:
+    return dataclasses.replace(_mission(), task="EBoatMissionSail-v0", train_task=mission_practice(MissionSailConfig()))
+
+
 AGENT_CONFIGS: dict[str, Callable[[], TrainConfig]] = {
     "EBoatWaypoint-v0": _waypoint,
     "EBoatWaypointPlus-v0": _waypoint_plus,
     "EBoatMission-v0": _mission,
+    "EBoatMissionSail-v0": _mission_sail,
 }
 """The default training config of each task id."""
 

@@ -29,7 +29,7 @@ from .task_kernels import (
     PRIVILEGED_OBS,
     StartDistribution,
     TaskParameters,
-    apply_actions,
+    apply_task_actions,
     draw_starts,
     evaluate,
     observe,
@@ -199,7 +199,7 @@ class SailingEnv:
     def launch_actions(self) -> None:
         """The environment layer before the physics: actions to actuator commands (launch only)."""
         sim = self.simulator
-        wp.launch(apply_actions, dim=self.num_envs, device=self.device, inputs=[self.actions],
+        wp.launch(apply_task_actions, dim=self.num_envs, device=self.device, inputs=[self.parameters, self.actions],
                   outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
 
     def launch_task(self) -> None:
@@ -301,6 +301,7 @@ def _task_parameters(task: TaskConfig) -> TaskParameters:
     p.time_cost = r.time_cost
     p.max_episode_length = task.max_episode_length
     p.observation_set = 0 if ObservationSet(task.observation) is ObservationSet.SEED else 1
+    p.sail_only = int(not task.propeller)
     return p
 
 

@@ -1,31 +1,48 @@
-"""``ocean-warp eval``: the six-waypoint mission BCDACA, sailed many times in waves by a policy and by the
-classical autopilot, with the paths drawn and the results tabled.
+"""``ocean-warp eval``: a task's runs (by default the six-waypoint mission BCDACA) sailed many times in waves
+by a policy and by the classical autopilot, with the paths drawn and the results tabled.
 
     ocean-warp eval                                  # the shipped mission policy and the autopilot, 20 runs
     ocean-warp eval --policy out/train/policy.pt --device cuda:0
     ocean-warp eval --no-policy --runs 5 --sea-state 0.5 --wind 8 --seed 1
+    ocean-warp eval --task EBoatMissionSail-v0       # the mission under sail alone (autopilot, no motor)
+    ocean-warp eval --task EBoatWaypoint-v0 --runs 50 --wind 6
 
-Each run is one environment of ``SailingEnv(MissionConfig(...))``: A (0, 0) -> B, C, D, A, C, A, each
-reached within 5 m, in a JONSWAP sea of significant height --sea-state (ocean seed --seed) and a gusty
-true wind (mean --wind, toward +x). Every controller sails the SAME runs: the same task and environment
-seed, so the same waves, gusts and starts. A run's first episode is its result; its path is recorded
-from the start to the end of that episode (the pose after the physics of the last decision, before the
-environment resets the run).
+--task is any registered task id (``ocean_warp.envs.registration.TASK_IDS``: EBoatWaypoint-v0,
+EBoatWaypointPlus-v0, EBoatMission-v0, EBoatMissionSail-v0; with or without the "ocean_warp/" prefix),
+default EBoatMission-v0. Each run is one environment of ``SailingEnv(<the task's config>)`` and its first
+episode is its result: for the missions, A (0, 0) -> B, C, D, A, C, A, each reached within 5 m; for the
+single-waypoint tasks, the episode toward the waypoint the run drew at its start (its own distance and
+bearing, heading and wind direction, as the task draws them). The sea is the task's with significant
+height --sea-state (default: the task's) and ocean seed --seed; the true wind is the task's, its mean
+speed --wind (default: the task's; a task that draws each start's wind speed from a range, as the
+waypoint tasks do, sails every run at --wind instead); --time-limit replaces the task's episode time.
+Every controller sails the SAME runs: the same task and environment seed, so the same waves, gusts,
+starts and waypoints. A run's path is recorded from the start to the end of its first episode (the pose
+after the physics of the last decision, before the environment resets the run).
+
+The policy is --policy PATH, else the task's shipped policy (``ocean_warp.envs.policies``); for a task
+that has none (EBoatWaypointPlus-v0, EBoatMissionSail-v0) eval says so in one line and sails the
+autopilot alone. On a task without propeller (EBoatMissionSail-v0: ``TaskConfig.propeller`` False) the
+autopilot sails without motor assist (``AutopilotConfig(assist_level=0)``), and the environment ignores
+any controller's propeller command (level 0).
 
 Written into --out (atomically):
-  trajectories.png   all runs' paths, one panel per controller (same axes), over the waypoints
+  trajectories.png   all runs' paths, one panel per controller (same axes), over the waypoints (each run's
+                     own, in its colour, for the single-waypoint tasks)
   results.csv        one row per controller (the table printed at the end)
   runs.csv           one row per run and controller
   trajectories.npz   the paths: <controller>_x, _y [m from the run's origin], _heading [rad], _propeller
-                     (level used at each decision), _reached (waypoints reached by each sample), _length
-                     (decisions per run); NaN-padded to the longest run
+                     (level commanded at each decision), _reached (waypoints reached by each sample), _length
+                     (decisions per run); NaN-padded to the longest run; _routes (N, R, 2) [m] each run's
+                     waypoints; route (R, 2) the task's fixed route (tasks that have one), start_point
 
 Columns of results.csv:
   controller, runs      the controller; runs sailed
-  completed             runs that reached all six waypoints; completion_rate = completed / runs
+  completed             runs that reached all their task's waypoints (the mission's six, a waypoint task's
+                        one); completion_rate = completed / runs
   time_mean_s, time_std_s, time_min_s, time_max_s
-                        mission time of the completed runs [s] (decisions x decision period; std with
-                        ddof 0); NaN when none completed
+                        time of the completed runs [s] (decisions x decision period; std with ddof 0);
+                        NaN when none completed
   distance_mean_m       distance sailed, the sum of the path's segments between decisions [m], mean over
                         all runs (their first episode, however it ended)
   tacks_mean, gybes_mean
@@ -33,7 +50,8 @@ Columns of results.csv:
                         tack when the true wind's source crosses the bow, a gybe when it crosses the
                         stern, counted once the heading has settled 10 deg past the wind axis on the new
                         side (envs/mission_metrics.py: wind_crossings)
-  cross_track_spread_m  how consistent the paths are [m]: on each leg, every run that completed the leg is
+  cross_track_spread_m  how consistent the paths are [m]: on each leg (from the run's start or previous
+                        waypoint to its next, each run's own), every run that completed the leg is
                         resampled at 50 points equally spaced in along-track distance (where the path first
                         reaches that distance), the population std across those runs of the offset from
                         the straight leg is taken at each point; the mean over the points, then over the
@@ -41,7 +59,8 @@ Columns of results.csv:
   capsizes, lost, time_outs
                         runs that capsized (BoatStatus.CAPSIZED), drifted beyond the leg's length + 25 m
                         from their waypoint, or reached the time limit
-  motor_use             fraction of decisions with a propeller level other than 0, mean over runs
+  motor_use             fraction of decisions with a propeller level other than 0 commanded (as the
+                        environment applied it: always 0 on a task without propeller), mean over runs
 """
 
 from __future__ import annotations
@@ -70,11 +89,15 @@ from .core import SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
 from .policy_io import CheckpointError, Policy, load_policy
-from .tasks import MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
+from .registration import TASK_IDS, make_task_config, task_name
+from .tasks import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
 __all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
-           "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "mission_task", "sail_mission", "evaluate_mission",
-           "main"]
+           "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "DEFAULT_TASK", "evaluation_task",
+           "mission_task", "sail_mission", "evaluate_mission", "main"]
+
+DEFAULT_TASK = "EBoatMission-v0"
+"""The task ``ocean-warp eval`` sails without --task."""
 
 TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
                  "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
@@ -123,7 +146,9 @@ class PolicyController:
 class AutopilotController:
     """The classical :class:`~ocean_warp.envs.autopilot.SailingAutopilot` (``config`` None: its defaults)
     sailing to each run's current waypoint. It forgets a run's tack side, integrator and counters when the
-    run starts a new episode (``env.reset_mask`` of the last step)."""
+    run starts a new episode (``env.reset_mask`` of the last step). On a task without propeller
+    (``TaskConfig.propeller`` False) it sails without the motor: its config's ``assist_level`` and
+    ``propeller_level`` are set to 0 (the environment would ignore them anyway)."""
 
     def __init__(self, config: AutopilotConfig | None = None, name: str = "autopilot"):
         if config is not None and not isinstance(config, AutopilotConfig):
@@ -133,10 +158,15 @@ class AutopilotController:
         self.pilot: SailingAutopilot | None = None
 
     def reset(self, env: SailingEnv) -> None:
-        # The defaults, with the heading integrator stepping at the environment's decision period.
-        config = self.config if self.config is not None else AutopilotConfig(decision_period=env.decision_period)
-        self.pilot = SailingAutopilot(env.simulator, config)
+        self.pilot = SailingAutopilot(env.simulator, self.config_for(env.task))
         self.pilot.reset()
+
+    def config_for(self, task: TaskConfig) -> AutopilotConfig:
+        """The autopilot's config on ``task``: this controller's (None: the defaults, the heading integrator
+        stepping at the task's decision period [s]), with the motor off (assist and propeller level 0)
+        where the task has no propeller."""
+        config = self.config if self.config is not None else AutopilotConfig(decision_period=task.decision_period)
+        return config if task.propeller else dataclasses.replace(config, assist_level=0, propeller_level=0)
 
     def act(self, env: SailingEnv) -> None:
         # The runs that ended in the last step started new episodes in it: forget their side and counts
@@ -158,7 +188,7 @@ class RunPath:
     heading: np.ndarray
     """(T + 1,) heading [rad, from +x counter-clockwise]."""
     propeller: np.ndarray
-    """(T,) propeller level (-5 ... 5) commanded at each decision."""
+    """(T,) propeller level (-5 ... 5) commanded at each decision (as the environment applied it)."""
     reached: np.ndarray
     """(T + 1,) waypoints reached by each sample."""
 
@@ -170,7 +200,7 @@ class ControllerResult:
     name: str
     paths: list[RunPath]
     success: np.ndarray
-    """(N,) bool: reached every waypoint."""
+    """(N,) bool: reached every waypoint of its task."""
     time_s: np.ndarray
     """(N,) when the first episode ended [s] (the mission time where ``success``)."""
     waypoints: np.ndarray
@@ -181,10 +211,11 @@ class ControllerResult:
     """(N,) bool: reached the time limit."""
     wind_direction: np.ndarray
     """(N,) mean direction the true wind blows toward [rad]."""
-    route: np.ndarray
-    """(R, 2) waypoints [m] from the origin."""
+    routes: np.ndarray
+    """(N, R, 2) each run's waypoints [m] from its origin, in order: the task's route, or the waypoint the
+    run drew at its start (single-waypoint tasks)."""
     start_point: np.ndarray
-    """(2,) where the route starts [m]."""
+    """(2,) where the runs start [m] (before the task's jitter)."""
     own_tacks: np.ndarray | None = None
     """(N,) the controller's own tack count, where it keeps one."""
     own_gybes: np.ndarray | None = None
@@ -196,11 +227,23 @@ class ControllerResult:
         self.tacks, self.gybes = crossings[:, 0], crossings[:, 1]
         self.motor_use = np.array([motor_use(p.propeller) for p in self.paths])
         self.spread_per_leg, self.cross_track_spread = cross_track_spread(
-            [p.xy for p in self.paths], [p.reached for p in self.paths], self.route, self.start_point)
+            [p.xy for p in self.paths], [p.reached for p in self.paths], self.routes, self.start_point)
 
     @property
     def runs(self) -> int:
         return len(self.paths)
+
+    @property
+    def shared_route(self) -> bool:
+        """Every run sailed the same waypoints (a task with a fixed route)."""
+        return bool(np.all(self.routes == self.routes[:1]))
+
+    @property
+    def route(self) -> np.ndarray:
+        """(R, 2) the waypoints [m] every run sailed; ValueError where the runs drew their own."""
+        if not self.shared_route:
+            raise ValueError(f"ControllerResult {self.name!r}: the runs drew their own waypoints; see routes")
+        return self.routes[0]
 
     def subset(self, runs: np.ndarray, name: str) -> ControllerResult:
         """The result of only the ``runs`` (indices or an (N,) bool mask), named ``name``; its metrics are
@@ -210,7 +253,7 @@ class ControllerResult:
         return ControllerResult(name=name, paths=[self.paths[i] for i in index], success=self.success[index],
                                 time_s=self.time_s[index], waypoints=self.waypoints[index], status=self.status[index],
                                 time_out=self.time_out[index], wind_direction=self.wind_direction[index],
-                                route=self.route, start_point=self.start_point, own_tacks=pick(self.own_tacks),
+                                routes=self.routes[index], start_point=self.start_point, own_tacks=pick(self.own_tacks),
                                 own_gybes=pick(self.own_gybes))
 
     @property
@@ -296,10 +339,10 @@ class FleetController:
 
 class RecordedDecision:
     """One decision of ``env``, launched as ``SailingEnv.step`` launches it (and captured as one graph
-    likewise), with each boat's pose copied out after the physics and before the task's kernels
-    restart the runs that ended: ``env.step()`` keeps no pose from before that reset, and the last
-    decision of a run is where it reached its last waypoint, capsized or was lost. A test checks that it
-    stays step for step the same as ``env.step()``.
+    likewise), with each boat's propeller command copied out after the actions kernel and its pose
+    after the physics, before the task's kernels restart the runs that ended: ``env.step()`` keeps no
+    pose from before that reset, and the last decision of a run is where it reached its last waypoint,
+    capsized or was lost. A test checks that it stays step for step the same as ``env.step()``.
 
     With ``frames_per_decision`` F > 1 it also keeps F evenly spaced frames inside the decision (after
     steps S/F, 2 S/F, ..., S of its S physics steps; F must divide S): pose, boom and rudder angles of
@@ -315,6 +358,8 @@ class RecordedDecision:
         self.env = env
         self.frames_per_decision = frames_per_decision
         n, device = env.num_envs, env.device
+        self.propeller = wp.zeros(n, dtype=env.simulator.control.propeller.dtype, device=device)
+        """(N,) propeller level (-5 ... 5) commanded at the last decision (0 on a task without propeller)."""
         self.position = wp.zeros(n, dtype=wp.vec3, device=device)
         """(N,) world position after the last decision's physics [m]."""
         self.orientation = wp.zeros(n, dtype=wp.quat, device=device)
@@ -333,6 +378,7 @@ class RecordedDecision:
         env, state = self.env, self.env.simulator.state
         n, every = env.num_envs, env.steps_per_decision // self.frames_per_decision
         env.launch_actions()
+        wp.copy(self.propeller, env.simulator.control.propeller)
         for step in range(env.steps_per_decision):
             env.simulator.launch_step()
             if (step + 1) % every == 0:
@@ -360,24 +406,18 @@ class RecordedDecision:
                 "rudder_angle": self.frame_rudder_angle.numpy().reshape(f, n)}
 
 
-def _propeller_levels(actions: np.ndarray) -> np.ndarray:
-    """int(5 a0) truncated toward zero, as the environment applies it (0 for a non-finite action)."""
-    a0 = np.nan_to_num(np.asarray(actions, dtype=np.float64)[:, 0], nan=0.0, posinf=0.0, neginf=0.0)
-    return np.trunc(5.0 * np.clip(a0, -1.0, 1.0)).astype(np.int64)
-
-
 def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = False, frames_per_decision: int = 1,
                  on_decision: Callable[[int, RecordedDecision], None] | None = None) -> ControllerResult:
     """Restart ``env`` from its seed (``env.reset(seed=env.seed)``: the same starts, waves and gusts every
-    time) and let ``controller`` sail every run until its first episode ends; record the paths.
+    time) and let ``controller`` sail every run until its first episode ends; record the paths. Any task:
+    a run's waypoints are the task's route, or the one it drew at its start (single-waypoint tasks).
 
     ``on_decision(k, decision)``, if given, is called after decision k (0, 1, ...) with the
     :class:`RecordedDecision`, whose ``frames()`` hold ``frames_per_decision`` frames of every boat
     from inside it (e.g. for a USD recorder); runs that already ended keep sailing new episodes there."""
-    if env.task.route is None:
-        raise ValueError("sail_mission: the task has no fixed route (a mission task is needed)")
     env.reset(seed=env.seed)
     controller.reset(env)
+    routes = env.route.numpy()[:, :, :2].astype(np.float64)  # the first episodes' waypoints, drawn by the reset
     decision = RecordedDecision(env, frames_per_decision)
     n, limit = env.num_envs, env.max_episode_length
     state = env.simulator.state
@@ -406,7 +446,7 @@ def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = Fa
             if on_decision is not None:
                 on_decision(k, decision)
             active = ~finished
-            levels[k, active] = _propeller_levels(env.actions.numpy())[active]
+            levels[k, active] = decision.propeller.numpy()[active]
             xy[k + 1, active] = decision.position.numpy()[active, :2] - origin[active]
             heading[k + 1, active] = roll_pitch_yaw(decision.orientation.numpy())[active, 2]
             reached[k + 1] = env.target_index.numpy()
@@ -436,28 +476,76 @@ def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = Fa
     own = {} if own_counts is None else {"own_tacks": outcome["own_tacks"], "own_gybes": outcome["own_gybes"]}
     return ControllerResult(name=controller.name, paths=paths, success=outcome["success"], time_s=outcome["time_s"],
                             waypoints=outcome["waypoints"], status=outcome["status"], time_out=outcome["time_out"],
-                            wind_direction=wind_direction, route=np.array(env.task.route, dtype=np.float64),
+                            wind_direction=wind_direction, routes=routes,
                             start_point=np.array(env.task.start_point, dtype=np.float64), **own)
+
+
+def _replace_given(config, **fields):
+    """``config`` (a dataclass) with the ``fields`` whose value is not None replaced."""
+    given = {name: value for name, value in fields.items() if value is not None}
+    return dataclasses.replace(config, **given) if given else config
+
+
+def evaluation_task(task: TaskConfig | str = DEFAULT_TASK, *, sea_state: float | None = None,
+                    wind: float | None = None, seed: int = 0, time_limit: float | None = None,
+                    observation: ObservationSet | str | None = None) -> TaskConfig:
+    """``task`` (a config, or a registered task id with or without "ocean_warp/") as ``ocean-warp eval``
+    sails it: the sea's significant height ``sea_state`` [m] (None: the task's) and its seed ``seed``; the
+    mean true wind ``wind`` [m/s] (None: the task's), which also fixes every start's wind speed (tasks that
+    draw it from a range, as the waypoint tasks do, then sail every run at ``wind``); the time limit
+    ``time_limit`` [s] (None: the task's); the policy's ``observation`` set (None: the task's). Gusts, wind
+    directions and the rest of the start stay the task's. Invalid values raise the configs' ``ValueError``
+    (an unknown id: one naming the known ones)."""
+    task = make_task_config(task) if isinstance(task, str) else task
+    if not isinstance(task, TaskConfig):
+        raise ValueError(f"evaluation_task: task must be a TaskConfig or a task id, got {task!r}")
+    simulator = dataclasses.replace(
+        task.simulator, ocean=_replace_given(task.simulator.ocean, significant_wave_height=sea_state, seed=seed),
+        wind=_replace_given(task.simulator.wind, speed=wind))
+    start = _replace_given(task.start, wind_speed=None if wind is None else (wind, wind))
+    return _replace_given(task, simulator=simulator, start=start, episode_time=time_limit, observation=observation)
 
 
 def mission_task(*, sea_state: float = 0.3, wind: float = 10.0, seed: int = 0, time_limit: float | None = None,
                  observation: ObservationSet | str | None = None, task: TaskConfig | None = None) -> TaskConfig:
-    """The mission as ``ocean-warp eval`` sails it: ``task`` (default ``MissionConfig()``) with the sea's
-    significant height ``sea_state`` [m] and seed ``seed``, the mean true wind ``wind`` [m/s] (gusts as the
-    task's), the time limit ``time_limit`` [s] (None: the task's) and the policy's ``observation`` set
-    (None: the task's). Invalid values raise the configs' ``ValueError``."""
+    """A mission as ``ocean-warp eval`` sails it (:func:`evaluation_task`): ``task`` (default
+    ``MissionConfig()``; it must have a fixed route) with the sea's significant height ``sea_state`` [m] and
+    seed ``seed``, the mean true wind ``wind`` [m/s] (gusts as the task's), the time limit ``time_limit`` [s]
+    (None: the task's) and the policy's ``observation`` set (None: the task's). Invalid values raise the
+    configs' ``ValueError``."""
     task = task if task is not None else MissionConfig()
     if not isinstance(task, TaskConfig) or task.route is None:
         raise ValueError(f"mission_task: task must be a TaskConfig with a fixed route (a MissionConfig), got {task!r}")
-    simulator = task.simulator
-    ocean = dataclasses.replace(simulator.ocean, significant_wave_height=sea_state, seed=seed)
-    simulator = dataclasses.replace(simulator, ocean=ocean, wind=dataclasses.replace(simulator.wind, speed=wind))
-    changes = {"simulator": simulator, "start": dataclasses.replace(task.start, wind_speed=(wind, wind))}
-    if time_limit is not None:
-        changes["episode_time"] = time_limit
-    if observation is not None:
-        changes["observation"] = observation
-    return dataclasses.replace(task, **changes)
+    return evaluation_task(task, sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
+                           observation=observation)
+
+
+def _course_text(task: TaskConfig) -> str:
+    """What a task's runs sail, in words: "BCDACA", "one waypoint per run" or "a route of R waypoints",
+    followed by "under sail alone" for a task without propeller."""
+    if task.route is None:
+        course = "one waypoint per run"
+    elif tuple(task.route) == BCDACA_ROUTE:
+        course = "BCDACA"
+    else:
+        course = f"a route of {len(task.route)} waypoints"
+    return course if task.propeller else f"{course} under sail alone"
+
+
+def _wind_text(task: TaskConfig) -> str:
+    """The mean true wind speed of a task's runs: "10 m/s", or "2-12 m/s" where each run draws its own."""
+    low, high = task.start.wind_speed
+    return f"{low:g} m/s" if low == high else f"{low:g}-{high:g} m/s"
+
+
+def _conditions_text(task: TaskConfig, seed: int) -> str:
+    """A task's sea, wind and seed in words: "Hs 0.3 m JONSWAP, wind 10 m/s with gusts, seed 0"."""
+    ocean, wind = task.simulator.ocean, task.simulator.wind
+    gusty = (wind.gust_speed_std > 0.0 or wind.gust_direction_std > 0.0) and task.start.gust_scale[1] > 0.0
+    spectrum = {"jonswap": "JONSWAP", "pierson_moskowitz": "Pierson-Moskowitz"}.get(ocean.spectrum.value,
+                                                                                   ocean.spectrum.value)
+    return (f"Hs {ocean.significant_wave_height:g} m {spectrum}, wind {_wind_text(task)}"
+            f"{' with gusts' if gusty else ''}, seed {seed}")
 
 
 @dataclasses.dataclass
@@ -466,7 +554,8 @@ class MissionEvaluation:
 
     task: TaskConfig
     settings: dict
-    """runs, sea_state [m], wind [m/s], seed, device, time_limit [s]."""
+    """runs, sea_state [m], wind [m/s] (None where each run draws its own), seed, device, time_limit [s];
+    optionally "task", the task id."""
     results: dict[str, ControllerResult]
 
     def table(self) -> list[dict]:
@@ -493,9 +582,12 @@ class MissionEvaluation:
         return paths
 
     def _write_npz(self, path: str) -> None:
-        arrays = {"controllers": np.array(list(self.results)), "route": np.array(self.task.route),
-                  "start_point": np.array(self.task.start_point), "decision_period": self.task.decision_period}
+        arrays = {"controllers": np.array(list(self.results)), "start_point": np.array(self.task.start_point),
+                  "decision_period": self.task.decision_period}
+        if self.task.route is not None:
+            arrays["route"] = np.array(self.task.route)
         for name, result in self.results.items():
+            arrays[f"{name}_routes"] = result.routes
             longest = max(len(p.xy) for p in result.paths)
             arrays[f"{name}_x"] = _padded([p.xy[:, 0] for p in result.paths], longest)
             arrays[f"{name}_y"] = _padded([p.xy[:, 1] for p in result.paths], longest)
@@ -508,21 +600,34 @@ class MissionEvaluation:
             np.savez_compressed(temporary, **arrays)
 
     def _plot(self, path: str) -> None:
-        panels = []
-        for result in self.results.values():
-            summary = result.summary()
-            mean = summary["time_mean_s"]
-            timing = f", mean {mean:.0f} s" if math.isfinite(mean) else ""
-            panels.append(PanelData(f"{result.name}: {summary['completed']}/{result.runs} completed{timing}",
-                                    [p.xy for p in result.paths]))
-        first = next(iter(self.results.values()))
-        direction = float(np.angle(np.exp(1j * first.wind_direction).mean()))
+        """The picture: the waypoints every run shares, named, or each run's own in its panel; one wind arrow
+        where the task fixes the wind's direction, else one per run in its panel."""
+        results, task = list(self.results.values()), self.task
+        shared = all(result.shared_route for result in results)
+        low, high = task.start.wind_direction_deg
+        direction = None
+        if low == high:  # one direction (the circular mean of the runs', which the gusts do not move)
+            direction = float(np.angle(np.exp(1j * np.concatenate([r.wind_direction for r in results])).mean()))
+        plot_trajectories([_panel(result, shared, direction is None) for result in results], path,
+                          waypoints=_waypoint_names(results[0].route) if shared else {}, start=task.start_point,
+                          reach_radius=task.reach_radius, wind_label=f"wind {_wind_text(task)}",
+                          wind_direction=direction, suptitle=self._title())
+
+    def _title(self) -> str:
         s = self.settings
-        plot_trajectories(panels, path, waypoints=_waypoint_names(self.task.route, self.task.start_point),
-                          start=self.task.start_point, reach_radius=self.task.reach_radius, wind_speed=s["wind"],
-                          wind_direction=direction,
-                          suptitle=f"BCDACA, {s['runs']} runs: Hs {s['sea_state']:g} m JONSWAP, wind {s['wind']:g} m/s "
-                                   f"with gusts, seed {s['seed']}")
+        prefix = f"{s['task']}: " if s.get("task") else ""
+        return f"{prefix}{_course_text(self.task)}, {s['runs']} runs: {_conditions_text(self.task, s['seed'])}"
+
+
+def _panel(result: ControllerResult, shared_route: bool, wind_per_run: bool) -> PanelData:
+    """A controller's panel: its paths, titled with its completions and mean time; its runs' own waypoints
+    unless every run shares the route, and their wind directions where each run has its own."""
+    summary = result.summary()
+    mean = summary["time_mean_s"]
+    timing = f", mean {mean:.0f} s" if math.isfinite(mean) else ""
+    return PanelData(f"{result.name}: {summary['completed']}/{result.runs} completed{timing}",
+                     [p.xy for p in result.paths], waypoints=None if shared_route else list(result.routes),
+                     wind_directions=result.wind_direction if wind_per_run else None)
 
 
 def _padded(values, size: int) -> np.ndarray:
@@ -531,12 +636,17 @@ def _padded(values, size: int) -> np.ndarray:
                      for v in values]).reshape(len(values), size)
 
 
-def _waypoint_names(route, start) -> dict[str, tuple[float, float]]:
-    """Each distinct point of the route (and the start) named as in MISSION_WAYPOINTS, else by number."""
+def _waypoint_names(route) -> dict[str, tuple[float, float]]:
+    """Each distinct point of the route [m], named as in MISSION_WAYPOINTS where every one is a mission
+    waypoint, else "W1", "W2", ... in route order."""
+    points = [tuple(float(v) for v in point) for point in route]
+    letters = [mission_waypoint_name(point) for point in points]
+    if None in letters:
+        letters = [f"W{k}" for k in range(1, len(points) + 1)]
     names = {}
-    for k, point in enumerate([tuple(start), *route]):
+    for name, point in zip(letters, points):
         if not any(math.dist(where, point) < 1e-3 for where in names.values()):
-            names[mission_waypoint_name(point) or f"W{k}"] = tuple(float(v) for v in point)
+            names[name] = point
     return names
 
 
@@ -557,31 +667,36 @@ def _write_csv(path: str, columns, rows) -> None:
                 writer.writerow([_format(row[column]) for column in columns])
 
 
-def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int = 20, sea_state: float = 0.3,
-                     wind: float = 10.0, seed: int = 0, device="cpu", time_limit: float | None = None,
+def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int = 20, sea_state: float | None = None,
+                     wind: float | None = None, seed: int = 0, device="cpu", time_limit: float | None = None,
                      autopilot: bool | AutopilotConfig = True, progress: bool = True, *,
-                     task: TaskConfig | None = None) -> MissionEvaluation:
-    """Sail the mission ``runs`` times with ``policy`` (a Policy, a checkpoint path, or None for none) and with
-    the classical autopilot (``autopilot``: True for its defaults, an AutopilotConfig, or False for none),
-    all on the same runs (one environment per run, the same seed for every controller).
+                     task: TaskConfig | str | None = None) -> MissionEvaluation:
+    """Sail a task's runs (default the mission, EBoatMission-v0) ``runs`` times with ``policy`` (a Policy, a
+    checkpoint path, or None for none) and with the classical autopilot (``autopilot``: True for its
+    defaults, an AutopilotConfig, or False for none; without the motor on a task without propeller), all on
+    the same runs (one environment per run, the same seed for every controller).
 
     Args:
-        sea_state: significant wave height Hs [m] of the JONSWAP sea (>= 0).
-        wind: mean true wind speed [m/s] (>= 0), toward +x, with the task's gusts.
-        seed: seed of the sea and of the environments' random streams (starts, gusts).
+        sea_state: significant wave height Hs [m] of the task's sea (>= 0); None: the task's (0.3 m for
+            the missions).
+        wind: mean true wind speed [m/s] (>= 0) of every run, with the task's gusts and directions; None:
+            the task's (10 m/s toward +x for the missions; the waypoint tasks draw it per run).
+        seed: seed of the sea and of the environments' random streams (starts, waypoints, gusts).
         device: Warp device ("cpu", "cuda", "cuda:N").
-        time_limit: per run [s]; None: the task's (1800 s).
+        time_limit: per run [s]; None: the task's (1800 s for the missions).
         progress: a progress bar per controller over its decisions.
-        task: the task to start from (default ``MissionConfig()``); for tests (a cheaper boat or sea).
+        task: a task config or a registered task id (default EBoatMission-v0); tests pass cheaper configs
+            (a coarser boat or sea).
 
     Raises:
-        ValueError: a bad setting or nothing to evaluate; CheckpointError: an unusable checkpoint path.
+        ValueError: a bad setting, an unknown task id or nothing to evaluate; CheckpointError: an unusable
+            checkpoint path.
     """
     if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
         raise ValueError(f"evaluate_mission: runs must be an integer >= 1, got {runs!r}")
     for name, value in (("sea_state", sea_state), ("wind", wind)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
-            raise ValueError(f"evaluate_mission: {name} must be a finite number >= 0, got {value!r}")
+        if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
+            raise ValueError(f"evaluate_mission: {name} must be a finite number >= 0 or None, got {value!r}")
     if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0.0):
         raise ValueError(f"evaluate_mission: time_limit must be > 0 [s] or None, got {time_limit!r}")
     if isinstance(policy, (str, os.PathLike)):
@@ -593,45 +708,53 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
         controllers.append(AutopilotController(None if autopilot is True else autopilot))
     if not controllers:
         raise ValueError("evaluate_mission: nothing to evaluate (no policy and autopilot=False)")
-    config = mission_task(sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
-                          observation=None if policy is None else policy.observation, task=task)
+    task = DEFAULT_TASK if task is None else task
+    config = evaluation_task(task, sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
+                             observation=None if policy is None else policy.observation)
     env = SailingEnv(config, int(runs), device=device, seed=seed)
     results = {controller.name: sail_mission(env, controller, progress=progress) for controller in controllers}
-    settings = {"runs": int(runs), "sea_state": float(sea_state), "wind": float(wind), "seed": int(seed),
-                "device": str(env.device), "time_limit": config.episode_time}
+    low, high = config.start.wind_speed
+    settings = {"task": task_name(task) if isinstance(task, str) else None, "runs": int(runs),
+                "sea_state": config.simulator.ocean.significant_wave_height, "wind": low if low == high else None,
+                "seed": int(seed), "device": str(env.device), "time_limit": config.episode_time}
     return MissionEvaluation(task=config, settings=settings, results=results)
 
 
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="ocean-warp eval", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--task", default=DEFAULT_TASK, metavar="ID",
+                        help=f"the task to sail: {', '.join(TASK_IDS)}, with or without 'ocean_warp/' "
+                             f"(default {DEFAULT_TASK})")
     parser.add_argument("--policy", default=None, metavar="PATH",
-                        help="policy checkpoint to evaluate (default: the shipped mission policy, "
-                             "ocean_warp/envs/policies/eboat_mission.pt)")
+                        help="policy checkpoint to evaluate (default: the task's shipped policy, where it has one, "
+                             "in ocean_warp/envs/policies/)")
     parser.add_argument("--no-policy", action="store_true", help="sail the autopilot only")
     parser.add_argument("--no-autopilot", action="store_true", help="sail the policy only")
-    parser.add_argument("--runs", type=int, default=20, help="missions per controller (default 20)")
-    parser.add_argument("--sea-state", type=float, default=0.3, metavar="HS",
-                        help="significant wave height Hs of the JONSWAP sea [m] (default 0.3)")
-    parser.add_argument("--wind", type=float, default=10.0, help="mean true wind speed [m/s] (default 10)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the sea, the gusts and the starts (default 0)")
+    parser.add_argument("--runs", type=int, default=20,
+                        help="runs per controller: missions, or episodes of a waypoint task (default 20)")
+    parser.add_argument("--sea-state", type=float, default=None, metavar="HS",
+                        help="significant wave height Hs of the task's sea [m] (default: the task's, 0.3 for the "
+                             "missions)")
+    parser.add_argument("--wind", type=float, default=None,
+                        help="mean true wind speed of every run [m/s] (default: the task's, 10 for the missions; "
+                             "the waypoint tasks draw it per run from their range unless this fixes it)")
+    parser.add_argument("--seed", type=int, default=0,
+                        help="seed of the sea, the gusts, the starts and the waypoints (default 0)")
     parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
-                        help="simulated time per run [s] (default: the task's, 1800)")
+                        help="simulated time per run [s] (default: the task's episode time, 1800 for the missions)")
     parser.add_argument("--out", default="out/eval", help="folder for the PNG, CSVs and NPZ (default out/eval)")
     parser.add_argument("--device", default="cpu", help='Warp device: "cpu", "cuda" or "cuda:N" (default cpu)')
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
 
-def main(argv=None) -> int:
-    """``ocean-warp eval [options]``: returns 0; bad options and unusable policies exit with status 2."""
-    parser = _parser()
-    args = parser.parse_args(argv)
-    wp.config.log_level = logging.WARNING
+def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Exit with status 2 (argparse's usage and one line) on option values that cannot work together."""
     if args.runs < 1:
         parser.error(f"--runs must be >= 1, got {args.runs}")
     for option, value in (("--sea-state", args.sea_state), ("--wind", args.wind)):
-        if not (math.isfinite(value) and value >= 0.0):
+        if value is not None and not (math.isfinite(value) and value >= 0.0):
             parser.error(f"{option} must be a finite number >= 0, got {value}")
     if args.time_limit is not None and not (math.isfinite(args.time_limit) and args.time_limit > 0.0):
         parser.error(f"--time-limit must be > 0 [s], got {args.time_limit}")
@@ -639,30 +762,66 @@ def main(argv=None) -> int:
         parser.error("--no-policy and --no-autopilot leave nothing to run")
     if args.no_policy and args.policy is not None:
         parser.error("--policy and --no-policy contradict each other")
+
+
+def _fail(parser: argparse.ArgumentParser, message: str) -> None:
+    """Exit with status 2 and one line on stderr (no usage, no traceback)."""
+    parser.exit(2, f"{parser.prog}: error: {message}\n")
+
+
+def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name: str) -> Policy | None:
+    """The policy to sail on task ``name``: --policy, else the task's shipped one. None, said in one line,
+    where the task has none (the autopilot sails alone); exits with status 2 on an unusable checkpoint, or
+    when there is no policy and --no-autopilot leaves nothing to run."""
+    from .policies import shipped_policy_path
+
+    path = args.policy
+    if path is None:
+        try:
+            path = shipped_policy_path(name)
+        except ValueError:
+            if args.no_autopilot:
+                _fail(parser, f"no policy is shipped for {name} and --no-autopilot leaves nothing to run; "
+                              "pass --policy PATH")
+            print(f"no policy is shipped for {name}: sailing the autopilot only (--policy PATH evaluates one)")
+            return None
+        except FileNotFoundError as error:
+            _fail(parser, f"{error}; --no-policy sails the autopilot alone")
+    try:
+        policy = load_policy(path)
+    except CheckpointError as error:
+        hint = "; --no-policy sails the autopilot alone" if args.policy is None else ""
+        _fail(parser, f"{error}{hint}")
+    print(f"policy {path}: for {policy.task}, observation {policy.observation!r} ({policy.num_obs} values)")
+    return policy
+
+
+def main(argv=None) -> int:
+    """``ocean-warp eval [options]``: returns 0; bad options, unknown task ids and unusable policies exit with
+    status 2."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    wp.config.log_level = logging.WARNING
+    _check_options(parser, args)
+    try:
+        name = task_name(args.task)
+    except ValueError as error:
+        _fail(parser, f"--task: {error}")
     try:
         device = wp.get_device(args.device)
-        mission_task(sea_state=args.sea_state, wind=args.wind, seed=args.seed, time_limit=args.time_limit)
+        task = evaluation_task(name, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
+                               time_limit=args.time_limit)
     except (RuntimeError, ValueError) as error:
         parser.error(str(error))
-    policy = None
-    if not args.no_policy:
-        from .policies import shipped_policy_path
-
-        try:
-            path = args.policy if args.policy is not None else shipped_policy_path("EBoatMission-v0")
-            policy = load_policy(path)
-        except (CheckpointError, FileNotFoundError) as error:
-            hint = "; --no-policy sails the autopilot alone" if args.policy is None else ""
-            parser.exit(2, f"{parser.prog}: error: {error}{hint}\n")
-        print(f"policy {path}: for {policy.task}, observation {policy.observation!r} ({policy.num_obs} values)")
-    print(f"BCDACA mission: {args.runs} runs per controller, Hs {args.sea_state:g} m, wind {args.wind:g} m/s, "
-          f"seed {args.seed}, device {device}")
+    policy = None if args.no_policy else _policy_for(parser, args, name)
+    print(f"{name} ({_course_text(task)}): {args.runs} runs per controller, {_conditions_text(task, args.seed)}, "
+          f"device {device}")
     try:
         evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                                       device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,
-                                      progress=not args.no_progress)
+                                      progress=not args.no_progress, task=name)
     except ValueError as error:  # a policy whose observation the task cannot give
-        parser.exit(2, f"{parser.prog}: error: {error}\n")
+        _fail(parser, str(error))
     paths = evaluation.write(args.out)
     print(evaluation.format_table())
     for path in paths.values():

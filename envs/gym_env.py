@@ -31,7 +31,8 @@ __all__ = ["SailingVectorEnv", "SailingEnvSingle", "action_space", "observation_
 
 
 def action_space() -> gym.spaces.Box:
-    """One boat's action space: Box(-1, 1, (3,), float32) = propeller, sheet, rudder (each scaled)."""
+    """One boat's action space: Box(-1, 1, (3,), float32) = propeller, sheet, rudder (each scaled; see
+    ``ocean_warp.envs.tasks``). The same for every task: one without propeller ignores the first."""
     return gym.spaces.Box(-1.0, 1.0, shape=(3,), dtype=np.float32)
 
 
@@ -64,8 +65,8 @@ class SailingVectorEnv(gym.vector.VectorEnv):
     """A fleet of boats behind the ``gymnasium.vector.VectorEnv`` API, natively batched.
 
     Args:
-        task: task id ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0", optionally
-            prefixed "ocean_warp/") or a task config object.
+        task: task id ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0",
+            "EBoatMissionSail-v0", optionally prefixed "ocean_warp/") or a task config object.
         num_envs: number of boats simulated together.
         device: Warp device ("cpu", "cuda:0"); observations come back as numpy either way.
         seed: seed of the per-env random streams (``reset(seed=...)`` re-seeds them).

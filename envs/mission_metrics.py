@@ -147,27 +147,32 @@ def cross_track_spread(paths: Sequence[np.ndarray], reached: Sequence[np.ndarray
     Args:
         paths: per run, (T_i, 2) positions [m] from the run's origin.
         reached: per run, (T_i,) waypoints reached by each sample (which leg the sample is on).
-        route: (R, 2) the waypoints [m], in order; leg k runs from waypoint k - 1 to waypoint k.
+        route: (R, 2) the waypoints [m] every run sails, in order, or (N, R, 2) each run's own (runs that
+            drew their waypoints); leg k runs from waypoint k - 1 to waypoint k.
         start: (2,) where leg 0 starts [m].
         points: along-track points per leg.
 
     For each leg, every run that completed it (reached its waypoint) is resampled at ``points`` points
-    equally spaced in along-track distance (:func:`cross_track_profile`); at each point the population
-    standard deviation (ddof 0) of the cross-track offsets across those runs is taken, and the leg's
-    spread is the mean over its points. A leg completed by fewer than two runs has no spread (NaN). The
-    overall value is the mean over the legs that have one (NaN if none).
+    equally spaced in along-track distance along its own leg (:func:`cross_track_profile`); at each point
+    the population standard deviation (ddof 0) of the cross-track offsets across those runs is taken, and
+    the leg's spread is the mean over its points. A leg completed by fewer than two runs has no spread
+    (NaN). The overall value is the mean over the legs that have one (NaN if none).
     """
-    route = np.asarray(route, dtype=np.float64).reshape(-1, 2)
-    corners = np.vstack([np.asarray(start, dtype=np.float64).reshape(1, 2), route])
-    per_leg = np.full(len(route), math.nan)
-    for leg in range(len(route)):
+    routes = np.asarray(route, dtype=np.float64)
+    if routes.ndim < 3:  # one route for every run
+        routes = np.broadcast_to(routes.reshape(1, routes.size // 2, 2), (len(paths), routes.size // 2, 2))
+    legs = routes.shape[1]
+    first = np.asarray(start, dtype=np.float64).reshape(1, 2)
+    corners = [np.vstack([first, own]) for own in routes]
+    per_leg = np.full(legs, math.nan)
+    for leg in range(legs):
         profiles = []
-        for xy, seen in zip(paths, reached):
+        for xy, seen, corner in zip(paths, reached, corners):
             seen = np.asarray(seen).reshape(-1)
             if seen.size == 0 or seen.max() <= leg:
                 continue
             index = leg_indices(seen, leg)
-            profiles.append(cross_track_profile(np.asarray(xy)[index], corners[leg], corners[leg + 1], points))
+            profiles.append(cross_track_profile(np.asarray(xy)[index], corner[leg], corner[leg + 1], points))
         if len(profiles) >= 2:
             per_leg[leg] = float(np.std(np.array(profiles), axis=0).mean())
     valid = per_leg[np.isfinite(per_leg)]

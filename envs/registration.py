@@ -1,8 +1,10 @@
 """Task ids: their configs, and their registration with gymnasium.
 
-``register_envs()`` registers ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0`` and
-``ocean_warp/EBoatMission-v0``, each with a single-boat ``entry_point`` (``gymnasium.make``) and a
-batched ``vector_entry_point`` (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``).
+``register_envs()`` registers ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``,
+``ocean_warp/EBoatMission-v0`` and ``ocean_warp/EBoatMissionSail-v0`` (the mission under sail alone: the
+propeller off, a0 ignored; the physics profile's boat), each with a single-boat ``entry_point``
+(``gymnasium.make``) and a batched ``vector_entry_point`` (``gymnasium.make_vec(...,
+vectorization_mode="vector_entry_point")``).
 Nothing is registered with ``max_episode_steps``: the simulator times episodes out itself, so
 gymnasium adds no TimeLimit wrapper unless the caller asks for one.
 """
@@ -14,27 +16,38 @@ from typing import Any
 
 import gymnasium as gym
 
-__all__ = ["NAMESPACE", "TASK_IDS", "make_task_config", "register_envs"]
+__all__ = ["NAMESPACE", "TASK_IDS", "task_name", "make_task_config", "register_envs"]
 
 NAMESPACE = "ocean_warp"
 """Gymnasium namespace of the ids registered here."""
 
-TASK_IDS = ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0")
+TASK_IDS = ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0", "EBoatMissionSail-v0")
 """Task ids, without the namespace."""
 
 _CONFIG_CLASS_NAMES = {
     "EBoatWaypoint-v0": "WaypointConfig",
     "EBoatWaypointPlus-v0": "WaypointPlusConfig",
     "EBoatMission-v0": "MissionConfig",
+    "EBoatMissionSail-v0": "MissionSailConfig",
 }
+
+
+def task_name(task_id: str) -> str:
+    """A registered task id without the namespace ("ocean_warp/EBoatMission-v0" -> "EBoatMission-v0").
+
+    Raises:
+        ValueError: not a registered task id (the message, one line, names the known ones).
+    """
+    name = str(task_id).removeprefix(f"{NAMESPACE}/")
+    if name not in _CONFIG_CLASS_NAMES:
+        raise ValueError(f"unknown task id {task_id!r}; known: {', '.join(TASK_IDS)} "
+                         f"(optionally prefixed '{NAMESPACE}/')")
+    return name
 
 
 def _default_config(task_id: str) -> Any:
     """The default config of a task id (with or without the namespace)."""
-    name = task_id.removeprefix(f"{NAMESPACE}/")
-    if name not in _CONFIG_CLASS_NAMES:
-        raise ValueError(f"unknown task id {task_id!r}; known: {', '.join(TASK_IDS)} "
-                         f"(optionally prefixed '{NAMESPACE}/')")
+    name = task_name(task_id)
     from . import tasks  # deferred: tasks pull in the simulator, registration must stay light
 
     return getattr(tasks, _CONFIG_CLASS_NAMES[name])()
@@ -65,7 +78,7 @@ def _episode_steps_override(config: Any, steps: int) -> dict[str, Any]:
 
 
 def register_envs() -> None:
-    """Register the three task ids with gymnasium; calling it again changes nothing."""
+    """Register the task ids (``TASK_IDS``) with gymnasium; calling it again changes nothing."""
     for name in TASK_IDS:
         env_id = f"{NAMESPACE}/{name}"
         if env_id in gym.registry:

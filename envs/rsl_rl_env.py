@@ -108,7 +108,8 @@ class RslRlVecEnv(VecEnv):
         """Run one decision for every env.
 
         Args:
-            actions: (N, 3) in [-1, 1] (clipped by the simulator): propeller, sheet, rudder.
+            actions: (N, 3) in [-1, 1] (clipped by the simulator): propeller (ignored by a task without
+                propeller), sheet, rudder.
 
         Returns:
             observations (post-reset where an env ended), rewards (N,) float32, dones (N,) bool,

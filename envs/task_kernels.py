@@ -12,8 +12,8 @@ import warp as wp
 from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
 
-__all__ = ["TaskParameters", "StartDistribution", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions", "evaluate",
-           "observe", "draw_starts"]
+__all__ = ["TaskParameters", "StartDistribution", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions",
+           "apply_task_actions", "evaluate", "observe", "draw_starts"]
 
 EPISODE_START = wp.constant(0x3C6E_F372)
 """Tag of the random stream that draws each episode's start."""
@@ -50,6 +50,9 @@ class TaskParameters:
     """Decisions before a time-out."""
     observation_set: int
     """0: the seed's 5 values, 1: Waypoint+'s 15."""
+    sail_only: int
+    """1: the task has no propeller (``TaskConfig.propeller`` False): the level commanded, and the one the
+    reward sees, is 0 whatever a0 is. 0 (also a zeroed struct's value): a0 sets the level."""
 
 
 @wp.struct
@@ -109,16 +112,27 @@ def from_uniform(u: float, low: float, high: float, step: float) -> float:
     return low + step * float(wp.min(int(u * float(cells)), cells - 1))
 
 
-@wp.kernel(enable_backward=False)
-def apply_actions(
+@wp.func
+def commanded_level(use_propeller: bool, action: float) -> int:
+    """The propeller level commanded for a0 = ``action``: ``propeller_level(action)``, or 0 without the
+    propeller (a task's ``sail_only``)."""
+    if use_propeller:
+        return propeller_level(action)
+    return 0
+
+
+@wp.func
+def write_commands(
+    env: int,
+    use_propeller: bool,
     actions: wp.array2d(dtype=float),
     rudder: wp.array(dtype=float),
     sheet: wp.array(dtype=float),
     propeller: wp.array(dtype=int),
 ):
-    """Actions in [-1, 1] (clipped) to commands: propeller int(5 a0), sheet (a0 + 1) 45 deg, rudder 60 deg
-    a2. A non-finite action becomes a NaN rudder command, which the simulator flags as bad input."""
-    env = wp.tid()
+    """Environment ``env``'s actions in [-1, 1] (clipped) to commands: propeller int(5 a0) (0 unless
+    ``use_propeller``), sheet (a1 + 1) 45 deg [rad], rudder 60 deg a2 [rad]. A non-finite action (a0 too,
+    even when ignored) becomes a NaN rudder command, which the simulator flags as bad input."""
     a0 = actions[env, 0]
     a1 = actions[env, 1]
     a2 = actions[env, 2]
@@ -126,9 +140,35 @@ def apply_actions(
         rudder[env] = wp.nan
         propeller[env] = 0
         return
-    propeller[env] = propeller_level(a0)
+    propeller[env] = commanded_level(use_propeller, a0)
     sheet[env] = (wp.clamp(a1, -1.0, 1.0) + 1.0) * SHEET_HALF
     rudder[env] = RUDDER_LIMIT * wp.clamp(a2, -1.0, 1.0)
+
+
+@wp.kernel(enable_backward=False)
+def apply_actions(
+    actions: wp.array2d(dtype=float),
+    rudder: wp.array(dtype=float),
+    sheet: wp.array(dtype=float),
+    propeller: wp.array(dtype=int),
+):
+    """Actions (N, 3) in [-1, 1] (clipped) to commands, the propeller always in use: propeller int(5 a0),
+    sheet (a1 + 1) 45 deg, rudder 60 deg a2 (see ``write_commands``). A task's step launches
+    ``apply_task_actions``, which knows whether the task has a propeller."""
+    write_commands(wp.tid(), True, actions, rudder, sheet, propeller)
+
+
+@wp.kernel(enable_backward=False)
+def apply_task_actions(
+    task: TaskParameters,
+    actions: wp.array2d(dtype=float),
+    rudder: wp.array(dtype=float),
+    sheet: wp.array(dtype=float),
+    propeller: wp.array(dtype=int),
+):
+    """A task's actions (N, 3) to commands, as ``apply_actions``, except that on a task without propeller
+    (``task.sail_only``) a0 is ignored and the level commanded is 0."""
+    write_commands(wp.tid(), task.sail_only == 0, actions, rudder, sheet, propeller)
 
 
 @wp.func
@@ -170,7 +210,7 @@ def evaluate(
     target = route[env, index]
     distance = wp.length(planar(target - local))
     leg = wp.length(planar(target - leg_start[env]))
-    level = float(wp.abs(propeller_level(actions[env, 0])))
+    level = float(wp.abs(commanded_level(task.sail_only == 0, actions[env, 0])))
 
     r = float(0.0)
     ended = False

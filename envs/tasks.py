@@ -1,9 +1,12 @@
-"""Sailing tasks as configs: the seed paper's waypoint task, our Waypoint+ and the BCDACA mission.
+"""Sailing tasks as configs: the seed paper's waypoint task, our Waypoint+, the BCDACA mission, and the
+mission under sail alone.
 
 A task is this config plus the kernels of ``ocean_warp.envs.task_kernels``; ``SailingEnv`` runs any of
 them. Every task has the same three actions, each in [-1, 1] (the seed's):
 
-    a0  propeller level int(5 a0), truncated toward zero (-5 ... +5)
+    a0  propeller level int(5 a0), truncated toward zero (-5 ... +5); ignored (level 0) by a task
+        without propeller (``TaskConfig.propeller`` False), which keeps a0 so that every task has
+        the same action space
     a1  sheet, the largest boom angle either side: (a1 + 1) 45 deg
     a2  rudder angle: 60 deg a2, positive turns to port
 
@@ -24,7 +27,8 @@ from ocean_warp.validation import require_choice, require_in_range, require_non_
 from ocean_warp.wind import WindConfig
 
 __all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name", "mission_sea", "waypoint_plus_sea"]
+           "MissionConfig", "MissionSailConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name",
+           "mission_sea", "waypoint_plus_sea"]
 
 MISSION_WAYPOINTS = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}
 """The seed paper's waypoints [m]: a 100 m square turned 45 degrees."""
@@ -129,7 +133,8 @@ class RewardConfig:
     then the seed's propeller term: if r > 0, r *= 1 - propeller_gain |level| / 5, else r -= propeller_cost
     |level|. Plus ``reach_bonus`` per waypoint reached, minus ``lost_penalty`` when the boat is lost,
     minus ``flagged_penalty`` when the simulator flags it (capsized, non-finite, sunk, flying, bad
-    input), minus ``smoothness`` sum((a - a_prev)^2) and ``time_cost`` every decision."""
+    input), minus ``smoothness`` sum((a - a_prev)^2) and ``time_cost`` every decision. The level is the
+    one commanded: 0 on a task without propeller (``TaskConfig.propeller`` False), whatever a0 is."""
 
     progress_scale: float = 125.0
     """[m] (the seed: 125)."""
@@ -207,6 +212,10 @@ class TaskConfig:
     meet different waves (False: every origin at (0, 0))."""
     start_height: float | None = None
     """Height of the base frame at the start [m]; None: the boat's rest height in still water."""
+    propeller: bool = True
+    """The boat may use its propeller (a0 sets the level). False: sail only; a0 is ignored, the level
+    commanded (and seen by the reward's propeller term) is 0 at every decision; the action space stays
+    3-D, as every task's."""
 
     def __post_init__(self):
         owner = type(self).__name__
@@ -240,6 +249,8 @@ class TaskConfig:
         if self.start_height is not None:
             object.__setattr__(self, "start_height", require_in_range(owner, "start_height", self.start_height,
                                                                       -1.0, 1.0, unit=" [m]"))
+        if not isinstance(self.propeller, bool):
+            raise ValueError(f"{owner}.propeller must be True or False, got {self.propeller!r}")
 
     @property
     def steps_per_decision(self) -> int:
@@ -287,6 +298,14 @@ class WaypointPlusConfig(TaskConfig):
     reward: RewardConfig = dataclasses.field(default_factory=lambda: RewardConfig(smoothness=0.05))
 
 
+def _mission_simulator(boat: EBoatConfig) -> EBoatSimulatorConfig:
+    """The mission's simulation with ``boat``: its JONSWAP sea, a true wind of 10 m/s toward +x with gusts
+    (1 m/s and 0.1 rad standard deviations), noise-free sensors."""
+    return EBoatSimulatorConfig(boat=boat, ocean=mission_sea(),
+                                wind=WindConfig(speed=10.0, direction=0.0, gust_speed_std=1.0, gust_direction_std=0.1),
+                                sensors=SensorConfig.noise_free())
+
+
 @dataclasses.dataclass(frozen=True)
 class MissionConfig(TaskConfig):
     """The seed paper's six-waypoint mission "BCDACA": from A (0, 0) to B, C, D, A, C, A, each reached within
@@ -295,13 +314,21 @@ class MissionConfig(TaskConfig):
     broad reach to B, the E-Boat capsizes in 10 m/s before the sheet can ease). Observations and reward as the waypoint task's, toward the current waypoint;
     lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s."""
 
-    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        boat=shipped_policy_boat(), ocean=mission_sea(),
-        wind=WindConfig(speed=10.0, direction=0.0, gust_speed_std=1.0, gust_direction_std=0.1),
-        sensors=SensorConfig.noise_free()))
+    simulator: EBoatSimulatorConfig = dataclasses.field(
+        default_factory=lambda: _mission_simulator(shipped_policy_boat()))
     episode_time: float = 1800.0
     route: tuple[tuple[float, float], ...] | None = BCDACA_ROUTE
     start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
         heading_deg=(-10.0, 10.0), heading_step_deg=0.0, heading_toward_waypoint=True, wind_speed=(10.0, 10.0),
         wind_direction_deg=(0.0, 0.0), wind_direction_step_deg=0.0, position_jitter=1.0, sheet_deg=(60.0, 60.0)))
 
+
+@dataclasses.dataclass(frozen=True)
+class MissionSailConfig(MissionConfig):
+    """The BCDACA mission under sail alone: as :class:`MissionConfig` (route, sea, gusty 10 m/s wind, start,
+    observations, reward, 1800 s), with the propeller off (a0 ignored, level 0 at every decision) and the
+    boat on the physics profile (``EBoatConfig()``: mesh hull, ITTC friction and residuary resistance,
+    keel and rudder as lifting surfaces), not the shipped policies' boat. No policy is shipped for it yet."""
+
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: _mission_simulator(EBoatConfig()))
+    propeller: bool = False

@@ -67,8 +67,11 @@ class RigParameters:
     """[kg/m^3]"""
     water_density: float
     """[kg/m^3]"""
-    windage_area: float
-    """Drag area (C_D A) of the mast, rigging and topsides in the apparent wind [m^2]."""
+    windage_area_ahead: float
+    """Drag area (C_D A) of what is not sail, in an apparent wind from ahead or astern [m^2]."""
+    windage_area_abeam: float
+    """The same in a wind from abeam [m^2]; between, C_D A = ahead cos^2 + abeam sin^2 of the wind's
+    horizontal angle off the bow (the ORC's blend)."""
     windage_center: wp.vec3
     """Where the windage acts [m]."""
     sail_lift_limit: float
@@ -181,7 +184,10 @@ def sailing_rig(
     windage_world = position[boat] + wp.quat_rotate(rotation, rig.windage_center)
     windage_wind = wp.quat_rotate_inv(rotation, wind_at_height(wind_velocity[boat], windage_world[2], gusts))
     windage_flow = windage_wind - point_velocity(nu, rig.windage_center)
-    windage_force = (0.5 * rig.air_density * rig.windage_area * wp.length(windage_flow)) * windage_flow
+    horizontal_squared = windage_flow[0] * windage_flow[0] + windage_flow[1] * windage_flow[1]
+    abeam_share = wp.where(horizontal_squared > 0.0, windage_flow[1] * windage_flow[1] / horizontal_squared, 0.0)
+    windage_area = rig.windage_area_ahead + abeam_share * (rig.windage_area_abeam - rig.windage_area_ahead)
+    windage_force = (0.5 * rig.air_density * windage_area * wp.length(windage_flow)) * windage_flow
 
     # Propeller: integer levels, weaker astern, along the body x axis.
     level = wp.clamp(propeller_command[boat], -rig.max_level, rig.max_level)

@@ -12,7 +12,8 @@ JOBS = {
     "drop-hulls": ("ocean_warp.examples.drop_hulls", "hulls of several shapes dropped into waves: heave and roll"),
     "train": ("ocean_warp.envs.training", "train a sailing policy with rsl-rl PPO (progress, TensorBoard, checkpoints)"),
     "polar": ("ocean_warp.examples.polar", "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
-    "eval": ("ocean_warp.envs.evaluation", "the BCDACA mission 20 times in waves: policy vs autopilot, PNG and CSV"),
+    "eval": ("ocean_warp.envs.evaluation", "a task sailed many times in waves, policy vs autopilot: PNG and CSV "
+             "(--task ID: any registered task; default the BCDACA mission, 20 runs)"),
     "export-usd": ("ocean_warp.envs.usd_export", "record a scenario (boats, sea, wind, controller, duration) to a "
                    "USD stage"),
 }

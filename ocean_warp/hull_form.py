@@ -18,7 +18,7 @@ import numpy as np
 from .hull import Hull
 from .validation import require_finite, require_positive
 
-__all__ = ["HullForm", "measure_hull_form", "displaced_volume", "floating_waterline"]
+__all__ = ["HullForm", "Topsides", "measure_hull_form", "measure_topsides", "displaced_volume", "floating_waterline"]
 
 _SECTION_STATIONS = 100
 """Transverse cuts at which the submerged volume aft of them is measured (its derivative is the section
@@ -178,3 +178,31 @@ def measure_hull_form(hull: Hull, waterline_z: float = 0.0) -> HullForm:
         wetted_area=float(areas.sum()), max_section_area=max_section,
         lcb_fraction=float((forward_x - buoyancy_x) / length), lcf_fraction=float((forward_x - flotation_x) / length),
         center_of_buoyancy=(buoyancy_x, 0.0, buoyancy_z), waterline_forward_x=float(forward_x))
+
+
+@dataclasses.dataclass(frozen=True)
+class Topsides:
+    """The hull above its waterline as the wind sees it (upright) [m^2, m]."""
+
+    area_ahead: float
+    """Projected area on a transverse plane (the wind from ahead) [m^2]."""
+    area_abeam: float
+    """Projected area on the centre plane (the wind from abeam) [m^2]."""
+    center_abeam: tuple
+    """(x, y, z) of the abeam projection's centroid, body frame [m]."""
+
+
+def measure_topsides(hull: Hull, waterline_z: float = 0.0) -> Topsides:
+    """Projected areas of ``hull`` (closed, upright) above the plane z = ``waterline_z`` [m]. A closed surface
+    covers its silhouette twice, so each projection is half the sum of |n . d| dA over the dry skin."""
+    waterline_z = require_finite("measure_topsides", "waterline_z", waterline_z)
+    triangles = _triangles(hull)
+    dry = _clip_triangles(triangles, triangles[:, :, 2] - waterline_z)
+    if len(dry) == 0:
+        raise ValueError(f"measure_topsides: waterline_z {waterline_z!r} m is above the hull")
+    _, vector = _areas_and_normals(dry)
+    abeam = np.abs(vector[:, 1])
+    centroid = dry.mean(axis=1)
+    center = (centroid * abeam[:, None]).sum(axis=0) / abeam.sum()
+    return Topsides(area_ahead=float(0.5 * np.abs(vector[:, 0]).sum()), area_abeam=float(0.5 * abeam.sum()),
+                    center_abeam=(float(center[0]), 0.0, float(center[2])))

@@ -14,13 +14,14 @@ import torch
 
 from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
-from ocean_warp.envs import MissionConfig, SailingEnv, policies
+from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv, policies
 from ocean_warp.envs.evaluation import (
     AutopilotController,
     FleetController,
     PolicyController,
     RecordedDecision,
     evaluate_mission,
+    evaluation_task,
     main,
     mission_task,
     sail_mission,
@@ -51,11 +52,18 @@ def tiny_mission(**changes) -> MissionConfig:
     return dataclasses.replace(task, simulator=simulator, **changes)
 
 
-def random_policy_file(path) -> None:
+def random_policy_file(path, *, constant_actions=None) -> None:
+    """A seed-observation policy for the mission with random weights; with ``constant_actions`` (3,), one
+    whose output layer ignores the observation and always gives these actions."""
     config = {"class_name": "MLPModel", "hidden_dims": [32, 32], "activation": "relu", "obs_normalization": False,
               "distribution_cfg": {"class_name": "GaussianDistribution", "init_std": 1.0}}
     torch.manual_seed(0)
     actor = build_actor(5, 3, config)
+    if constant_actions is not None:
+        last = [module for module in actor.modules() if isinstance(module, torch.nn.Linear)][-1]
+        with torch.no_grad():
+            last.weight.zero_()
+            last.bias.copy_(torch.tensor(constant_actions))
     save_checkpoint(path, {"task": "EBoatMission-v0", "observation": "seed", "num_obs": 5, "num_actions": 3,
                            "actor_config": config, "actor_state_dict": actor.state_dict()})
 
@@ -323,8 +331,8 @@ def test_cli_help(capsys):
     assert exit_info.value.code == 0
     text = capsys.readouterr().out
     assert "ocean-warp eval" in text
-    for option in ("--runs", "--sea-state", "--wind", "--seed", "--out", "--device", "--policy", "--no-autopilot",
-                   "--no-policy", "--time-limit"):
+    for option in ("--task", "--runs", "--sea-state", "--wind", "--seed", "--out", "--device", "--policy",
+                   "--no-autopilot", "--no-policy", "--time-limit"):
         assert option in text
 
 
@@ -409,3 +417,107 @@ def test_benchmark_uses_the_runner(monkeypatch):
     assert set(result) == {"success", "time", "waypoints", "tacks", "status", "time_out"}
     np.testing.assert_array_equal(result["time"], [5.0, 5.0])
     np.testing.assert_array_equal(result["time_out"], [1.0, 1.0])
+
+
+# --- every task: ``--task`` ------------------------------------------------------------------------
+
+SHIPPED = set(policies.SHIPPED_POLICIES)
+"""Tasks with a shipped policy (the others sail the autopilot alone)."""
+
+
+@pytest.mark.parametrize("task_id", [f"ocean_warp/{name}" if k % 2 else name for k, name in enumerate(TASK_IDS)])
+def test_cli_runs_every_task(task_id, tmp_path, capsys):
+    """``eval --task ID`` for every registered id (with and without the prefix): 1 run of 2 s per controller,
+    the task's shipped policy where it has one, else the autopilot alone, said in one line."""
+    name = task_id.removeprefix("ocean_warp/")
+    assert main(["--task", task_id, "--runs", "1", "--time-limit", "2", "--out", str(tmp_path), "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert (f"no policy is shipped for {name}" in out) == (name not in SHIPPED)
+    header, rows = read_csv(tmp_path / "results.csv")
+    assert header == COLUMNS
+    assert [row["controller"] for row in rows] == (["policy", "autopilot"] if name in SHIPPED else ["autopilot"])
+    assert all(int(row["runs"]) == 1 and int(row["time_outs"]) + int(row["capsizes"]) == 1 for row in rows)
+    if name == "EBoatMissionSail-v0":
+        assert float(rows[0]["motor_use"]) == 0.0
+    _, runs = read_csv(tmp_path / "runs.csv")
+    assert all(float(row["time_s"]) == 2.0 for row in runs)
+
+
+def test_cli_sail_task_ignores_the_policys_propeller(tmp_path, capsys):
+    """A policy that always asks for full propeller (a0 = 1): motor use 1 on the mission, 0 on the mission
+    under sail alone, for the policy and the autopilot alike (the autopilot without motor assist)."""
+    random_policy_file(tmp_path / "full_ahead.pt", constant_actions=[1.0, 0.0, 0.0])
+    for task, motor in (("EBoatMission-v0", 1.0), ("EBoatMissionSail-v0", 0.0)):
+        out = tmp_path / task
+        assert main(["--task", task, "--policy", str(tmp_path / "full_ahead.pt"), "--runs", "1", "--time-limit", "3",
+                     "--out", str(out), "--no-progress"]) == 0
+        _, rows = read_csv(out / "results.csv")
+        assert float(rows[0]["motor_use"]) == motor
+        arrays = np.load(out / "trajectories.npz")
+        assert np.all(arrays["policy_propeller"] == 5 * motor)
+        if task == "EBoatMissionSail-v0":
+            assert float(rows[1]["motor_use"]) == 0.0 and np.all(arrays["autopilot_propeller"] == 0)
+    capsys.readouterr()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--task", "EBoatNowhere-v0"], "unknown task id 'EBoatNowhere-v0'; known: " + ", ".join(TASK_IDS)),
+    (["--task", "EBoatMissionSail-v0", "--no-autopilot"], "no policy is shipped for EBoatMissionSail-v0 and "
+                                                           "--no-autopilot leaves nothing to run"),
+])
+def test_cli_task_errors_are_one_line(argv, message, tmp_path, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv + ["--out", str(tmp_path / "out")])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert message in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_evaluation_task_settings():
+    """--sea-state and --wind replace the task's only when given; --wind fixes a drawn wind speed."""
+    plus = evaluation_task("ocean_warp/EBoatWaypointPlus-v0", seed=2)
+    assert plus.start.wind_speed == (2.0, 12.0) and plus.simulator.ocean.significant_wave_height == 0.5
+    assert plus.simulator.ocean.seed == 2 and plus.episode_time == 300.0
+    fixed = evaluation_task("EBoatWaypointPlus-v0", wind=6.0, sea_state=0.2, time_limit=50.0, observation="seed")
+    assert fixed.start.wind_speed == (6.0, 6.0) and fixed.simulator.wind.speed == 6.0
+    assert fixed.simulator.ocean.significant_wave_height == 0.2 and fixed.episode_time == 50.0
+    assert fixed.observation.value == "seed" and fixed.start.wind_direction_deg == plus.start.wind_direction_deg
+    assert evaluation_task() == mission_task()  # the default: the mission as before
+    with pytest.raises(ValueError, match="known: EBoatWaypoint-v0"):
+        evaluation_task("EBoatNowhere-v0")
+
+
+def test_waypoint_task_runs_sail_to_their_own_waypoints(tmp_path):
+    """EBoatWaypointPlus-v0 with waypoints drawn 15-25 m away (any bearing), 3 runs of 60 s: each run sails to
+    the waypoint it drew, the same for both controllers; "completed" is reaching it, and a completed path
+    ends within the reach radius of its own waypoint (plus a decision's travel). The files carry the
+    per-run waypoints."""
+    random_policy_file(tmp_path / "random.pt")
+    plus = evaluation_task("EBoatWaypointPlus-v0", observation="seed")
+    simulator = dataclasses.replace(
+        plus.simulator, boat=dataclasses.replace(plus.simulator.boat, hydrostatics=Hydrostatics.POINTS),
+        ocean_every_substep=False,
+        ocean=OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.3, peak_period=3.0))
+    task = dataclasses.replace(plus, simulator=simulator,
+                               start=dataclasses.replace(plus.start, waypoint_distance=(15.0, 25.0)))
+    evaluation = evaluate_mission(load_policy(tmp_path / "random.pt"), runs=3, time_limit=60.0, wind=6.0,
+                                  progress=False, task=task)
+    policy, autopilot = evaluation.results["policy"], evaluation.results["autopilot"]
+    np.testing.assert_array_equal(policy.routes, autopilot.routes)
+    assert policy.routes.shape == (3, 1, 2) and not autopilot.shared_route
+    reach = np.linalg.norm(autopilot.routes[:, 0], axis=1)
+    assert np.all((reach > 15.0 - 1e-3) & (reach < 25.0 + 1e-3)) and len(np.unique(reach)) == 3
+    with pytest.raises(ValueError, match="drew their own waypoints"):
+        autopilot.route
+    assert autopilot.success.any(), autopilot.waypoints  # the autopilot, motor assisting, reaches 25 m in 60 s
+    for result in (policy, autopilot):
+        np.testing.assert_array_equal(result.waypoints, result.success.astype(int))
+        for path, own, done in zip(result.paths, result.routes, result.success):
+            if done:
+                assert np.linalg.norm(path.xy[-1] - own[0]) <= task.reach_radius + 3.0
+    paths = evaluation.write(tmp_path / "out")
+    arrays = np.load(paths["trajectories.npz"])
+    np.testing.assert_array_equal(arrays["autopilot_routes"], autopilot.routes)
+    np.testing.assert_array_equal(arrays["policy_routes"], policy.routes)
+    assert "route" not in arrays

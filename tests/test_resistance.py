@@ -155,14 +155,14 @@ AIR = 1.201
 
 def _resistance(sim: EBoatSimulator, height: float, speed: float) -> float:
     """Hull (pressure, friction, residuary), keel and rudder [N] of the upright boat moving ahead at ``speed``
-    in still water: the rig's forces in still air less what the air does, worked by hand (windage C_D A
-    0.5 m^2, the centred sail's C_D 0.05 on 3.188 m^2)."""
+    in still water: the rig's forces in still air less what the air does, worked by hand (the topsides' windage,
+    the ORC's C_D 0.816 on their projected area ahead, and the centred, luffing main's ORC C_D 0.03448 on 3.188 m^2)."""
     sim.reset(position=[0.0, 0.0, height], velocity=[speed, 0, 0, 0, 0, 0])
     simulator = sim.simulator
     simulator.compute_hull_wrenches()
     sim.fleet.model_wrench.zero_()
     sim.rig.substep(simulator)
-    air = 0.5 * AIR * (0.5 + 0.05 * 3.188) * speed**2
+    air = 0.5 * AIR * (0.816 * sim.eboat.topsides.area_ahead + 0.03448 * 3.188) * speed**2
     return -float(sim.fleet.hydro_wrench.numpy()[0, 0] + sim.fleet.model_wrench.numpy()[0, 0]) - air
 
 

@@ -14,24 +14,29 @@ from ..hydrodynamics_config import HydrodynamicsConfig
 from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
 from ..kernels.sailing_rig import RigParameters
-from ..hull_form import HullForm, floating_waterline, measure_hull_form
+from ..hull_form import HullForm, Topsides, floating_waterline, measure_hull_form, measure_topsides
 from ..lifting_surface import LiftingSurface
 from ..resistance import DEFAULT_FORM_FACTOR, ResiduaryResistance
+from ..sail import Mainsail
 from ..validation import require_choice
 from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull
 from .mass_properties import MassProperties, eboat_mass_properties
-from .sheet import ACTUATORS, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, FoilFigures, Version
+from .sheet import ACTUATORS, BOOM_HEIGHT, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, FoilFigures, Version
 
 __all__ = ["Profile", "Hydrostatics", "EBoatConfig", "EBoat", "load_foil_table", "eboat_hydrodynamics"]
 
 MAST_LENGTH = 3.55
 """Sheet, mast row [m]."""
 WINDAGE_AREA = 0.5
-"""Drag area C_D A of the mast, rigging and topsides [m^2] (assumed, not on the sheet): the 3.55 x 0.1 m
-mast as a cylinder (C_D about 1.2, 0.43 m^2) and a little of the hull above water. The original twin had
-none; without it the tabulated sail points closer than 20 degrees to the wind."""
+"""Seed profile: drag area C_D A of the mast, rigging and topsides [m^2], any wind direction (assumed, not
+on the sheet): the 3.55 x 0.1 m mast as a cylinder (C_D about 1.2, 0.43 m^2) and a little of the hull
+above water. The original twin had none; without it the seed's sail table points closer than 20 degrees
+to the wind."""
 WINDAGE_HEIGHT = 1.2
-"""Height of the windage's centre above the waterline [m] (assumed)."""
+"""Seed profile: height of the windage's centre in the base frame [m] (assumed)."""
+HULL_WINDAGE_DRAG = 0.816
+"""Physics profile: C_D of the hull's topsides on their projected area (the ORC VPP's hull windage). The
+mast's drag is in the ORC main's parasitic drag (``ocean_warp.sail``), so it is not added again."""
 
 
 class Profile(str, enum.Enum):
@@ -173,7 +178,8 @@ class EBoat:
             # in for the appendages' and rig's damping that the mesh does not see.
             damping = dict(linear_damping=(0.0, 0.0, 0.0) + tuple(vrx.linear_damping[3:]))
         mp = self.mass_properties
-        self.hull_form: HullForm = measure_hull_form(self.hull, floating_waterline(self.hull, mp.mass))
+        waterline = floating_waterline(self.hull, mp.mass)
+        self.hull_form: HullForm = measure_hull_form(self.hull, waterline)
         """The canoe body's form below its waterline at rest, upright, in sea water (1025 kg/m^3)."""
         physics = self.config.profile is Profile.PHYSICS
         residuary = ResiduaryResistance.delft(self.hull_form) if physics else None
@@ -189,6 +195,13 @@ class EBoat:
         self.vrx = vrx
         self.keel, self.rudder = eboat_lifting_surfaces(self.rig_figures)
         """The physics profile's keel and rudder (:class:`LiftingSurface`)."""
+        deck = float(self.hull.vertices[:, 2].max())
+        self.mainsail = Mainsail(area=self.rig_figures.sail_area, luff=float(self.masthead[2]) - BOOM_HEIGHT,
+                                 boom_above_deck=BOOM_HEIGHT - deck)
+        """The physics profile's main (:class:`Mainsail`): luff from the boom to the masthead, boom above
+        the deck's highest point."""
+        self.topsides: Topsides = measure_topsides(self.hull, waterline)
+        """The hull above its waterline at rest, as the wind sees it (the physics profile's windage)."""
 
     @property
     def boom_inertia(self) -> float:
@@ -223,8 +236,13 @@ class EBoat:
         rig.boom_damping = figures.boom_damping
         rig.air_density = ENVIRONMENT["air_density"]
         rig.water_density = water_density
-        rig.windage_area = WINDAGE_AREA
-        rig.windage_center = wp.vec3(MAST_STEP[0], 0.0, WINDAGE_HEIGHT)
+        if physics:
+            rig.windage_area_ahead = HULL_WINDAGE_DRAG * self.topsides.area_ahead
+            rig.windage_area_abeam = HULL_WINDAGE_DRAG * self.topsides.area_abeam
+            rig.windage_center = wp.vec3(*self.topsides.center_abeam)
+        else:
+            rig.windage_area_ahead = rig.windage_area_abeam = WINDAGE_AREA
+            rig.windage_center = wp.vec3(MAST_STEP[0], 0.0, WINDAGE_HEIGHT)
         tuned = self.config.original_tuning
         rig.sail_lift_limit = np.radians(100.0 if tuned else 180.0)
         rig.foil_lift_limit = np.radians(90.0 if tuned else 180.0)
@@ -233,11 +251,11 @@ class EBoat:
 
     def coefficient_tables(self) -> dict[str, np.ndarray]:
         """C_L and C_D at 0..180 deg, (181,) each, of the sail, keel and rudder under this profile: the sheet's
-        sail table always; the sheet's foil table for keel and rudder (seed) or their lifting surfaces
-        (physics)."""
+        tables (seed), or the ORC main and the fins as lifting surfaces (physics)."""
         table = self.foil_table
         tables = {"sail_lift": table[:, 1], "sail_drag": table[:, 2]}
         if self.config.profile is Profile.PHYSICS:
+            tables["sail_lift"], tables["sail_drag"] = self.mainsail.tables()
             for name, surface in (("keel", self.keel), ("rudder", self.rudder)):
                 tables[f"{name}_lift"], tables[f"{name}_drag"] = surface.tables()
         else:
