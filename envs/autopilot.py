@@ -143,6 +143,20 @@ class AutopilotConfig:
         object.__setattr__(self, "propeller_level",
                            require_int_in_range(_OWNER, "propeller_level", self.propeller_level, -5, 5))
 
+    @classmethod
+    def sail_only(cls, **overrides) -> "AutopilotConfig":
+        """Settings for the physics-profile E-Boat with the propeller off (``overrides`` replace fields): the
+        sail aimed at 20 deg of attack (the ORC main's lift is near its top there and it luffs below 8),
+        the rudder held to 18 deg (the lifting-surface rudder stalls at 17.7 deg of attack, which a turning
+        boat's rudder meets at a larger angle), dead runs rather than broad
+        reaches (on a broad reach with the boom at 90 deg the boat rounds up against its rudder in 10 m/s)
+        and the boom let out no further than 80 deg. Swept on the sail-only BCDACA mission, 5 m/s, Hs 0.3 m,
+        20 runs (H100, 2026-11-24): 20 of 20 completed; the defaults with the motor off: 10 of 20."""
+        degree = math.pi / 180.0
+        settings = dict(attack_angle=20.0 * degree, rudder_limit=18.0 * degree, run_angle=180.0 * degree,
+                        max_sheet=80.0 * degree, assist_level=0, propeller_level=0)
+        return cls(**{**settings, **overrides})
+
     def parameters(self) -> AutopilotParameters:
         """The kernels' view of this config."""
         p = AutopilotParameters()

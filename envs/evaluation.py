@@ -162,11 +162,13 @@ class AutopilotController:
         self.pilot.reset()
 
     def config_for(self, task: TaskConfig) -> AutopilotConfig:
-        """The autopilot's config on ``task``: this controller's (None: the defaults, the heading integrator
-        stepping at the task's decision period [s]), with the motor off (assist and propeller level 0)
-        where the task has no propeller."""
-        config = self.config if self.config is not None else AutopilotConfig(decision_period=task.decision_period)
-        return config if task.propeller else dataclasses.replace(config, assist_level=0, propeller_level=0)
+        """The autopilot's config on ``task``: this controller's, with the motor off (assist and propeller
+        level 0) where the task has no propeller; None: the defaults, or ``AutopilotConfig.sail_only()``
+        where the task has no propeller, with the heading integrator stepping at the task's decision period [s]."""
+        if self.config is None:
+            preset = AutopilotConfig if task.propeller else AutopilotConfig.sail_only
+            return preset(decision_period=task.decision_period)
+        return self.config if task.propeller else dataclasses.replace(self.config, assist_level=0, propeller_level=0)
 
     def act(self, env: SailingEnv) -> None:
         # The runs that ended in the last step started new episodes in it: forget their side and counts

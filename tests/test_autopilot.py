@@ -11,7 +11,7 @@ import pytest
 import warp as wp
 
 from benchmarks.autopilot_mission import run_mission
-from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.envs.autopilot import AutopilotConfig, SailingAutopilot
 from ocean_warp.envs.task_kernels import apply_actions
 from ocean_warp.envs.tasks import shipped_policy_boat
@@ -172,11 +172,12 @@ def test_act_in_captured_graph(device):
     np.testing.assert_allclose(actions.numpy(), expected, atol=1e-6)
 
 
-def sail(device, starts, headings, targets, seconds, *, wind=10.0, config=None):
+def sail(device, starts, headings, targets, seconds, *, wind=10.0, config=None, boat=None):
     """Sail boats in still water and a steady wind towards +x with the autopilot; returns per-decision
-    (heading, course, position, status) arrays and the pilot."""
-    # The autopilot's gains were tuned on the boat the tasks sail (the seed's forces on the mesh hull).
-    sim_config = EBoatSimulatorConfig(boat=shipped_policy_boat(), wind=WindConfig(speed=wind, direction=0.0))
+    (heading, course, position, status) arrays and the pilot. ``boat``: default the boat the autopilot's
+    default gains were tuned on (the seed's forces on the mesh hull), which the motor-allowed tasks sail."""
+    sim_config = EBoatSimulatorConfig(boat=boat if boat is not None else shipped_policy_boat(),
+                                      wind=WindConfig(speed=wind, direction=0.0))
     n = len(starts)
     sim = EBoatSimulator(sim_config, n, device=device)
     config = config if config is not None else AutopilotConfig()
@@ -224,6 +225,21 @@ def test_beam_reach_and_beat(device):
     assert int(pilot.side.numpy()[1]) == -1
     distance = np.hypot(*(log["position"][-1, 1] - target))
     assert distance < 60.0 - 20.0
+
+
+def test_sail_only_beat_on_the_physics_boat(device):
+    """The physics-profile boat under sail alone with ``AutopilotConfig.sail_only()`` in 5 m/s: a target 60 m
+    dead upwind is reached by beating, with at least one tack, the boat upright throughout and its course never
+    inside the no-go zone."""
+    config = AutopilotConfig.sail_only()
+    start_heading = WIND_FROM - 60.0 * DEG
+    log, pilot = sail(device, starts=[[0.0, 0.0, 0.0]], headings=[start_heading], targets=[[-60.0, 0.0, 0.0]],
+                      seconds=240.0, wind=5.0, config=config, boat=EBoatConfig())
+    assert np.all(log["status"] == 0)
+    assert np.all(np.abs(wrap(log["course"][:, 0] - WIND_FROM)) >= config.close_hauled_angle - 1e-4)
+    distance = np.hypot(*(log["position"][:, 0] - np.array([-60.0, 0.0])).T)
+    assert distance.min() < 10.0, distance.min()
+    assert int(pilot.tacks.numpy()[0]) >= 1
 
 
 def test_two_full_missions(device):

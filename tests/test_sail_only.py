@@ -8,6 +8,7 @@ formula, worked out here from the boats' positions before and after each decisio
 from __future__ import annotations
 
 import dataclasses
+import math
 import warnings
 
 import gymnasium as gym
@@ -122,6 +123,8 @@ def test_autopilot_sails_without_motor_where_there_is_no_propeller():
     default = AutopilotController().config_for(sail)
     assert (default.assist_level, default.propeller_level) == (0, 0)
     assert default.decision_period == sail.decision_period
+    assert default == AutopilotConfig.sail_only(decision_period=sail.decision_period)
+    assert default.rudder_limit == pytest.approx(math.radians(18.0))  # near the physics rudder's stall (17.7 deg)
     assert AutopilotController().config_for(mission) == AutopilotConfig(decision_period=mission.decision_period)
     motoring = AutopilotConfig(propeller_level=3, assist_level=4, heading_gain=0.5)
     assert AutopilotController(motoring).config_for(mission) == motoring
