@@ -4,7 +4,7 @@ by a policy and by the classical autopilot, with the paths drawn and the results
     ocean-warp eval                                  # the shipped mission policy and the autopilot, 20 runs
     ocean-warp eval --policy out/train/policy.pt --device cuda:0
     ocean-warp eval --no-policy --runs 5 --sea-state 0.5 --wind 8 --seed 1
-    ocean-warp eval --task EBoatMissionSail-v0       # the mission under sail alone (autopilot, no motor)
+    ocean-warp eval --task EBoatMissionSail-v0       # the mission under sail alone (no motor)
     ocean-warp eval --task EBoatWaypoint-v0 --runs 50 --wind 6
 
 --task is any registered task id (``ocean_warp.envs.registration.TASK_IDS``: EBoatWaypoint-v0,
@@ -21,10 +21,10 @@ starts and waypoints. A run's path is recorded from the start to the end of its 
 after the physics of the last decision, before the environment resets the run).
 
 The policy is --policy PATH, else the task's shipped policy (``ocean_warp.envs.policies``); for a task
-that has none (EBoatWaypointPlus-v0, EBoatMissionSail-v0) eval says so in one line and sails the
-autopilot alone. On a task without propeller (EBoatMissionSail-v0: ``TaskConfig.propeller`` False) the
-autopilot sails without motor assist (``AutopilotConfig(assist_level=0)``), and the environment ignores
-any controller's propeller command (level 0).
+that has none (EBoatWaypointPlus-v0) eval says so in one line and sails the autopilot alone. On a task
+without propeller (EBoatMissionSail-v0: ``TaskConfig.propeller`` False) the autopilot sails without motor
+assist (``AutopilotConfig.sail_only()``), and the environment ignores any controller's propeller command
+(level 0).
 
 Written into --out (atomically):
   trajectories.png   all runs' paths, one panel per controller (same axes), over the waypoints (each run's

@@ -328,7 +328,9 @@ class MissionSailConfig(MissionConfig):
     """The BCDACA mission under sail alone: as :class:`MissionConfig` (route, sea, gusty 10 m/s wind, start,
     observations, reward, 1800 s), with the propeller off (a0 ignored, level 0 at every decision) and the
     boat on the physics profile (``EBoatConfig()``: mesh hull, ITTC friction and residuary resistance,
-    keel and rudder as lifting surfaces), not the shipped policies' boat. No policy is shipped for it yet."""
+    keel and rudder as lifting surfaces), not the motor-allowed tasks' boat. Its shipped policy
+    (``eboat_mission_sail.pt``, 15.3 minutes of training on an H100) completes 4 of 20 missions in 10 m/s
+    (``benchmarks/RESULTS.md``, "Sailing fidelity")."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: _mission_simulator(EBoatConfig()))
     propeller: bool = False

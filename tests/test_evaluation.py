@@ -393,7 +393,8 @@ def test_mission_task_settings():
 
 
 def test_shipped_policy_path(monkeypatch):
-    assert policies.SHIPPED_POLICIES == {"EBoatMission-v0": "eboat_mission.pt", "EBoatWaypoint-v0": "eboat_waypoint.pt"}
+    assert policies.SHIPPED_POLICIES == {"EBoatMission-v0": "eboat_mission.pt", "EBoatWaypoint-v0": "eboat_waypoint.pt",
+                                         "EBoatMissionSail-v0": "eboat_mission_sail.pt"}
     with pytest.raises(ValueError, match="no policy is shipped"):
         policies.shipped_policy_path("EBoatWaypointPlus-v0")
     monkeypatch.setitem(policies.SHIPPED_POLICIES, "EBoatMission-v0", "not_there_yet.pt")
@@ -462,8 +463,8 @@ def test_cli_sail_task_ignores_the_policys_propeller(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["--task", "EBoatNowhere-v0"], "unknown task id 'EBoatNowhere-v0'; known: " + ", ".join(TASK_IDS)),
-    (["--task", "EBoatMissionSail-v0", "--no-autopilot"], "no policy is shipped for EBoatMissionSail-v0 and "
-                                                           "--no-autopilot leaves nothing to run"),
+    (["--task", "EBoatWaypointPlus-v0", "--no-autopilot"], "no policy is shipped for EBoatWaypointPlus-v0 and "
+                                                            "--no-autopilot leaves nothing to run"),
 ])
 def test_cli_task_errors_are_one_line(argv, message, tmp_path, capsys):
     with pytest.raises(SystemExit) as exit_info:

@@ -136,5 +136,7 @@ def test_long_crested_sea_travels_one_way(device, rng):
     # All energy in the cells nearest the ray of the mean direction (a ring of |k| that the ray crosses
     # between cell centres keeps its energy in its nearest cell).
     assert energy[np.abs(across) >= 1.5 * 2 * math.pi / 800.0].sum() == 0.0
-    # Energy conserved ring by ring: the grid holds the spectrum's Hs (less the unresolved tail).
-    assert ocean.significant_wave_height == pytest.approx(spectrum_hs(lambda w: dnv_jonswap(w, 1.0, 7.0, 3.3)), rel=0.02)
+    # Energy conserved ring by ring: the grid holds the spectrum's Hs (less the unresolved tail). The cells
+    # nearest the ray sample the spectrum up to half a grid step off their ring's radius, which near the
+    # peak moves the grid's Hs with the direction: -1.6 % to +2.1 % over every 0.5 deg (2026-11-24).
+    assert ocean.significant_wave_height == pytest.approx(spectrum_hs(lambda w: dnv_jonswap(w, 1.0, 7.0, 3.3)), rel=0.03)

@@ -8,14 +8,15 @@ __all__ = ["SHIPPED_POLICIES", "shipped_policy_path"]
 
 SHIPPED_POLICIES = {
     "EBoatMission-v0": "eboat_mission.pt",
+    "EBoatMissionSail-v0": "eboat_mission_sail.pt",
     "EBoatWaypoint-v0": "eboat_waypoint.pt",
 }
 """Task id -> file name of its shipped policy, in this package's folder."""
 
 
 def shipped_policy_path(task_id: str) -> pathlib.Path:
-    """The path of the policy shipped for ``task_id`` ("EBoatMission-v0" or "EBoatWaypoint-v0", optionally
-    prefixed "ocean_warp/").
+    """The path of the policy shipped for ``task_id`` (a key of ``SHIPPED_POLICIES``, optionally prefixed
+    "ocean_warp/").
 
     Raises:
         ValueError: no policy is shipped for that task.
