@@ -18,7 +18,8 @@ import numpy as np
 from .hull import Hull
 from .validation import require_finite, require_positive
 
-__all__ = ["HullForm", "Topsides", "measure_hull_form", "measure_topsides", "displaced_volume", "floating_waterline"]
+__all__ = ["HullForm", "Topsides", "measure_hull_form", "measure_topsides", "displaced_volume", "floating_waterline",
+           "clip_triangles", "areas_and_normals"]
 
 _SECTION_STATIONS = 100
 """Transverse cuts at which the submerged volume aft of them is measured (its derivative is the section
@@ -73,7 +74,7 @@ class HullForm:
         return self.waterline_beam / self.canoe_draft
 
 
-def _clip_triangles(triangles: np.ndarray, distance: np.ndarray) -> np.ndarray:
+def clip_triangles(triangles: np.ndarray, distance: np.ndarray) -> np.ndarray:
     """The parts of ``triangles`` (T, 3, 3) where the per-corner ``distance`` (T, 3), linear over each
     triangle, is positive: (P, 3, 3) triangles with the input's winding."""
     inside = distance > 0.0
@@ -100,7 +101,7 @@ def _clip_triangles(triangles: np.ndarray, distance: np.ndarray) -> np.ndarray:
     return np.concatenate(pieces) if pieces else np.zeros((0, 3, 3))
 
 
-def _areas_and_normals(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def areas_and_normals(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(P,) areas [m^2] and (P, 3) area-weighted outward normals of triangles (P, 3, 3)."""
     vector = 0.5 * np.cross(pieces[:, 1] - pieces[:, 0], pieces[:, 2] - pieces[:, 0])
     return np.linalg.norm(vector, axis=1), vector
@@ -109,8 +110,8 @@ def _areas_and_normals(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _volume_aft_of(wet: np.ndarray, station: float) -> float:
     """Submerged volume [m^3] aft of x = ``station``: the divergence theorem with (x - station, 0, 0),
     which vanishes on both cutting planes."""
-    aft = _clip_triangles(wet, station - wet[:, :, 0])
-    _, vector = _areas_and_normals(aft)
+    aft = clip_triangles(wet, station - wet[:, :, 0])
+    _, vector = areas_and_normals(aft)
     return float(np.sum(vector[:, 0] * (aft[:, :, 0].mean(axis=1) - station)))
 
 
@@ -119,8 +120,8 @@ def _triangles(hull: Hull) -> np.ndarray:
 
 
 def _wet_volume(triangles: np.ndarray, waterline_z: float) -> float:
-    wet = _clip_triangles(triangles, waterline_z - triangles[:, :, 2])
-    _, vector = _areas_and_normals(wet)
+    wet = clip_triangles(triangles, waterline_z - triangles[:, :, 2])
+    _, vector = areas_and_normals(wet)
     return float(np.sum(vector[:, 2] * (wet[:, :, 2].mean(axis=1) - waterline_z)))
 
 
@@ -152,8 +153,8 @@ def measure_hull_form(hull: Hull, waterline_z: float = 0.0) -> HullForm:
     if not low < waterline_z < high:
         raise ValueError(f"measure_hull_form: waterline_z must cut the hull, between {low:.4g} and {high:.4g} m; "
                          f"got {waterline_z!r}")
-    wet = _clip_triangles(triangles, waterline_z - triangles[:, :, 2])
-    areas, vector = _areas_and_normals(wet)
+    wet = clip_triangles(triangles, waterline_z - triangles[:, :, 2])
+    areas, vector = areas_and_normals(wet)
     depth = wet[:, :, 2] - waterline_z  # <= 0
     # Divergence theorem over the closed submerged body; the waterplane has depth 0 and no x or y normal.
     volume = float(np.sum(vector[:, 2] * depth.mean(axis=1)))
@@ -197,10 +198,10 @@ def measure_topsides(hull: Hull, waterline_z: float = 0.0) -> Topsides:
     covers its silhouette twice, so each projection is half the sum of |n . d| dA over the dry skin."""
     waterline_z = require_finite("measure_topsides", "waterline_z", waterline_z)
     triangles = _triangles(hull)
-    dry = _clip_triangles(triangles, triangles[:, :, 2] - waterline_z)
+    dry = clip_triangles(triangles, triangles[:, :, 2] - waterline_z)
     if len(dry) == 0:
         raise ValueError(f"measure_topsides: waterline_z {waterline_z!r} m is above the hull")
-    _, vector = _areas_and_normals(dry)
+    _, vector = areas_and_normals(dry)
     abeam = np.abs(vector[:, 1])
     centroid = dry.mean(axis=1)
     center = (centroid * abeam[:, None]).sum(axis=0) / abeam.sum()

@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from .hull import Hull
-from .hull_form import _areas_and_normals, _clip_triangles
+from .hull_form import areas_and_normals, clip_triangles
 from .validation import require_finite, require_in_range, require_positive
 
 __all__ = ["WATER_DENSITY", "RightingArmCurve", "Flotation", "float_heeled", "righting_arm_curve",
@@ -101,10 +101,10 @@ def _quadratic_mean(u: np.ndarray) -> np.ndarray:
 def _submerged(world: np.ndarray, level: float) -> tuple[float, np.ndarray, float]:
     """Volume [m^3], centre (3,) [m] and waterplane area [m^2] of the closed triangles ``world`` (T, 3, 3)
     below z = ``level``; centre NaN when nothing is submerged."""
-    wet = _clip_triangles(world, level - world[:, :, 2])
+    wet = clip_triangles(world, level - world[:, :, 2])
     if len(wet) == 0:
         return 0.0, np.full(3, np.nan), 0.0
-    _, vector = _areas_and_normals(wet)
+    _, vector = areas_and_normals(wet)
     depth = wet[:, :, 2] - level
     volume = float(np.sum(vector[:, 2] * depth.mean(axis=1)))
     if volume <= 0.0:
