@@ -28,7 +28,7 @@ from ocean_warp.wind import WindConfig
 
 __all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
            "MissionConfig", "MissionSailConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name",
-           "mission_sea", "waypoint_plus_sea"]
+           "mission_sea", "mission_simulator", "waypoint_plus_sea"]
 
 MISSION_WAYPOINTS = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}
 """The seed paper's waypoints [m]: a 100 m square turned 45 degrees."""
@@ -298,7 +298,7 @@ class WaypointPlusConfig(TaskConfig):
     reward: RewardConfig = dataclasses.field(default_factory=lambda: RewardConfig(smoothness=0.05))
 
 
-def _mission_simulator(boat: EBoatConfig) -> EBoatSimulatorConfig:
+def mission_simulator(boat: EBoatConfig) -> EBoatSimulatorConfig:
     """The mission's simulation with ``boat``: its JONSWAP sea, a true wind of 10 m/s toward +x with gusts
     (1 m/s and 0.1 rad standard deviations), noise-free sensors."""
     return EBoatSimulatorConfig(boat=boat, ocean=mission_sea(),
@@ -315,7 +315,7 @@ class MissionConfig(TaskConfig):
     lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(
-        default_factory=lambda: _mission_simulator(shipped_policy_boat()))
+        default_factory=lambda: mission_simulator(shipped_policy_boat()))
     episode_time: float = 1800.0
     route: tuple[tuple[float, float], ...] | None = BCDACA_ROUTE
     start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
@@ -332,5 +332,5 @@ class MissionSailConfig(MissionConfig):
     (``eboat_mission_sail.pt``, 15.3 minutes of training on an H100) completes 4 of 20 missions in 10 m/s
     (``benchmarks/RESULTS.md``, "Sailing fidelity")."""
 
-    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: _mission_simulator(EBoatConfig()))
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: mission_simulator(EBoatConfig()))
     propeller: bool = False
