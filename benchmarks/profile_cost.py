@@ -3,7 +3,7 @@ interleaved in one run on one device.
 
     python -m benchmarks.profile_cost --device cuda:0 --boats 4096 16384 --json out/profile_cost.json
 
-"Earlier" is the seed profile's forces on the mesh hull (``shipped_policy_boat()``: Kerner's drag on the
+"Earlier" is the seed profile's forces on the mesh hull (``EBoatConfig(profile="seed", hydrostatics="mesh")``: Kerner's drag on the
 whole flow, the sheet's tables; the simulator's default before issue 19), "physics" the new default
 (ITTC friction and the Delft residuary term per boat, lifting-surface fins, the ORC main, topsides
 windage). Both run the same code path otherwise; the cases alternate, each timed as a captured graph
@@ -25,11 +25,16 @@ import warp as wp
 from benchmarks.bench_eboat import build, time_step
 from benchmarks.bench_envs import seconds_per_call
 from benchmarks.timing import device_description, write_results_json
-from ocean_warp.eboat import EBoatConfig
+from ocean_warp.eboat import EBoatConfig, Hydrostatics, Profile
 from ocean_warp.envs import MissionConfig, SailingEnv
-from ocean_warp.envs.tasks import shipped_policy_boat
 
-PROFILES = {"earlier (seed forces, mesh hull)": shipped_policy_boat, "physics": EBoatConfig}
+
+def earlier_boat() -> EBoatConfig:
+    """The simulator's default before the physics profile: the seed profile's forces on the mesh hull."""
+    return EBoatConfig(profile=Profile.SEED, hydrostatics=Hydrostatics.MESH)
+
+
+PROFILES = {"earlier (seed forces, mesh hull)": earlier_boat, "physics": EBoatConfig}
 
 
 def decision_seconds(boat: EBoatConfig, envs: int, device, repeats: int) -> float:

@@ -20,7 +20,7 @@ import dataclasses
 import enum
 import math
 
-from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Hydrostatics, Profile
+from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Profile
 from ocean_warp.ocean_config import OceanConfig
 from ocean_warp.sensors import SensorConfig
 from ocean_warp.validation import require_choice, require_in_range, require_non_negative, require_positive
@@ -175,20 +175,12 @@ def mission_sea() -> OceanConfig:
     return OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=0.3, peak_period=3.0)
 
 
-def shipped_policy_boat() -> EBoatConfig:
-    """The boat the shipped policies and the autopilot's tuning were made on: the mesh hull with Kerner's
-    pressure drag on the whole flow and the sheet's foil tables for keel and rudder (the seed profile's
-    forces on the mesh hull; the simulator's default before the physics profile). The tasks keep it until
-    their policies are retrained on the physics profile."""
-    return EBoatConfig(profile=Profile.SEED, hydrostatics=Hydrostatics.MESH)
-
-
 @dataclasses.dataclass(frozen=True)
 class TaskConfig:
     """A sailing task: the simulation, the route, the start distribution, the observation and the reward."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        boat=shipped_policy_boat(), ocean=_seed_sea(), sensors=SensorConfig.noise_free()))
+        boat=EBoatConfig(), ocean=_seed_sea(), sensors=SensorConfig.noise_free()))
     """Boat, sea, wind gusts, sensors, water and time step (dt, substeps)."""
     decision_period: float = 1.0
     """Simulated time per decision [s] (the seed: 1-5 s); a whole number of ``simulator.dt``."""
@@ -287,7 +279,7 @@ class WaypointPlusConfig(TaskConfig):
     the waypoint (50-150 m, any bearing); a choppy sea; a 300 s time limit; a penalty on jerky actuation."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        boat=shipped_policy_boat(), ocean=waypoint_plus_sea(),
+        boat=EBoatConfig(), ocean=waypoint_plus_sea(),
         wind=WindConfig(gust_speed_std=1.0, gust_direction_std=0.1)))
     episode_time: float = 300.0
     observation: ObservationSet | str = ObservationSet.PLUS
@@ -312,10 +304,11 @@ class MissionConfig(TaskConfig):
     5 m; true wind 10 m/s blowing toward +x with gusts, so A->C runs dead downwind and C->A beats dead
     upwind; a JONSWAP sea; the boat starts with its sheet eased to 60 deg (sheeted hard in on the
     broad reach to B, the E-Boat capsizes in 10 m/s before the sheet can ease). Observations and reward as the waypoint task's, toward the current waypoint;
-    lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s."""
+    lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s. The boat is the physics
+    profile's (``EBoatConfig()``: mesh hull, ITTC friction and residuary resistance, keel and rudder as
+    lifting surfaces)."""
 
-    simulator: EBoatSimulatorConfig = dataclasses.field(
-        default_factory=lambda: mission_simulator(shipped_policy_boat()))
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: mission_simulator(EBoatConfig()))
     episode_time: float = 1800.0
     route: tuple[tuple[float, float], ...] | None = BCDACA_ROUTE
     start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
@@ -326,11 +319,9 @@ class MissionConfig(TaskConfig):
 @dataclasses.dataclass(frozen=True)
 class MissionSailConfig(MissionConfig):
     """The BCDACA mission under sail alone: as :class:`MissionConfig` (route, sea, gusty 10 m/s wind, start,
-    observations, reward, 1800 s), with the propeller off (a0 ignored, level 0 at every decision) and the
-    boat on the physics profile (``EBoatConfig()``: mesh hull, ITTC friction and residuary resistance,
-    keel and rudder as lifting surfaces), not the motor-allowed tasks' boat. Its shipped policy
+    observations, reward, 1800 s, the physics profile's boat), with the propeller off (a0 ignored, level 0
+    at every decision). Its shipped policy
     (``eboat_mission_sail.pt``, 15.3 minutes of training on an H100) completes 4 of 20 missions in 10 m/s
     (``benchmarks/RESULTS.md``, "Sailing fidelity")."""
 
-    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: mission_simulator(EBoatConfig()))
     propeller: bool = False

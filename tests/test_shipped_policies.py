@@ -53,7 +53,7 @@ def test_shipped_mission_policy_sails_bcdaca_on_the_cpu():
     result = evaluation.results["policy"]
     assert result.success.all(), result.status
     assert (result.waypoints == len(result.route)).all()
-    assert (result.time_s < 900.0).all()
+    assert (result.time_s < 1200.0).all()
     for path in result.paths:  # independent of the env's own bookkeeping: the path passes each waypoint
         closest = np.nanmin(np.linalg.norm(path.xy[:, None, :] - result.route[None, :, :], axis=-1), axis=0)
         assert (closest <= 5.0 + 2.5).all(), closest  # 5 m reach + at most one decision's travel at 2.5 m/s
