@@ -7,7 +7,7 @@ import pytest
 import warp as wp
 
 import ocean_warp as ow
-from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics, Profile
 from ocean_warp.eboat.polar import speed_polar
 from ocean_warp.examples.polar import hull_speed
 from ocean_warp.kernels.autopilot import accumulate_course_keeping
@@ -123,6 +123,19 @@ def test_full_thrust_speed_is_where_thrust_meets_the_towing_resistance(device):
     resistance_at_motor_speed = np.interp(speed[0], towed, forces)
     assert resistance_at_motor_speed == pytest.approx(thrust, rel=0.05)
     assert 0.5 * hull_speed(motor.eboat) < speed[0] < 1.2 * hull_speed(motor.eboat)
+
+
+def test_seed_profile_reproduces_the_speeds_measured_before_the_physics_profile(device):
+    """Issue 19 measured the earlier default (the seed's forces on the mesh hull) in still water, CPU:
+    24 / 48 / 72 / 96 / 120 N of thrust gave 0.68 / 1.01 / 1.28 / 1.51 / 1.71 m/s. The seed profile must
+    still give them (the figures are rounded to 0.01 m/s)."""
+    boat = EBoatConfig(profile=Profile.SEED, hydrostatics=Hydrostatics.MESH)
+    sim = EBoatSimulator(EBoatSimulatorConfig(boat=boat, wind=CALM), 5, device=device)
+    sim.reset(position=[[0.0, 20.0 * i, 0.05] for i in range(5)])
+    sim.tensors.control.propeller[:] = sim.tensors.control.propeller.new_tensor([1, 2, 3, 4, 5])
+    speed, wobble = steady_speed(sim, seconds=40.0, window=5.0)
+    assert np.all(wobble < 0.002), wobble
+    np.testing.assert_allclose(speed, [0.68, 1.01, 1.28, 1.51, 1.71], atol=0.0051)
 
 
 def test_nan_commands_and_wind_freeze_and_flag_the_boat(device):
