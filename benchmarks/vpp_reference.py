@@ -46,8 +46,11 @@ calling its classes ``Yacht``, ``Keel``, ``Rudder``, ``Main``, ``Jib``, ``VPP`` 
 Hull particulars: by default the json's (a parametric estimate: Lwl 2.4 m ...). ``--hull-form FILE``
 takes a JSON with waterline_length, waterline_beam, canoe_draft, displaced_volume, wetted_area,
 max_section_area (e.g. ``dataclasses.asdict`` of ``ocean_warp.hull_form.HullForm``; other keys are
-ignored) for the simulator's own procedural hull. The mass, the GZ curve, freeboards and appendages stay
-the json's; the package derives LVR and BTR from the particulars and does not use Cp or Cm (printed
+ignored) for the simulator's own procedural hull. ``--righting-arm FILE`` replaces the json's GZ curve
+(from a parametric hull with the centre of gravity 0.16 m below the waterline and a 6 kg rig) by the
+simulator's own (``benchmarks/data/righting_arm.csv``, the sheet's link table: centre of gravity 0.16 m
+above the waterline, a 12.5 kg mast), so the VPP sails a boat as stiff as the twin. The mass, freeboards
+and appendages stay the json's; the package derives LVR and BTR from the particulars and does not use Cp or Cm (printed
 for information).
 
 Run (CPU, about 30 s: 5 deg angle grid, a 1 deg refinement near the best upwind VMG, and the
@@ -205,7 +208,23 @@ def load_inputs(path: Path, hull_form: Path | None):
     return data, inputs
 
 
-def build_yacht(data, inputs, yacht_cls):
+def read_righting_arm(path: Path, series: str = "mesh") -> dict[str, list[float]]:
+    """The righting-arm curve of ``path`` (a csv with columns series, heel_deg, gz_m, as
+    ``benchmarks/stability.py`` writes it: the rows of ``series``) in the package's GZ form, 0-60 deg."""
+    heel, gz = [], []
+    with open(path, newline="") as table:
+        for row in csv.DictReader(table):
+            if row.get("series", series) == series and float(row["heel_deg"]) <= 60.0:
+                heel.append(float(row["heel_deg"]))
+                gz.append(float(row["gz_m"]))
+    if len(heel) < 3 or heel[0] != 0.0 or any(b <= a for a, b in zip(heel, heel[1:])):
+        raise SystemExit(f"--righting-arm {path}: need rows of series {series!r} with heel_deg rising from 0")
+    if not all(math.isfinite(g) for g in gz):
+        raise SystemExit(f"--righting-arm {path}: gz_m must be finite")
+    return {"Heel": heel, "GZ": gz}
+
+
+def build_yacht(data, inputs, yacht_cls, righting_arm: dict | None = None):
     from python_vpp import Jib, Keel, Main, Rudder
 
     keel = Keel(Cu=inputs["keel"]["Cu"], Cl=inputs["keel"]["Cl"], Span=inputs["keel"]["Span"],
@@ -217,7 +236,8 @@ def build_yacht(data, inputs, yacht_cls):
                 BAD=inputs["main"]["BAD"])
     jib = Jib("none", I=inputs["dummy_jib"]["I"], J=inputs["dummy_jib"]["J"], LPG=inputs["dummy_jib"]["LPG"],
               HBI=inputs["HBI"])
-    gz = {"Heel": list(data["GZ"]["heel"]), "GZ": list(data["GZ"]["gz_m"])}
+    gz = righting_arm if righting_arm is not None else {"Heel": list(data["GZ"]["heel"]),
+                                                         "GZ": list(data["GZ"]["gz_m"])}
     return yacht_cls(Name="E-Boat", Lwl=inputs["Lwl"], Vol=inputs["Vol"], Bwl=inputs["Bwl"], Tc=inputs["Tc"],
                      WSA=inputs["WSA"], Tmax=inputs["Tmax"], Amax=inputs["Amax"], Mass=inputs["Mass"],
                      Loa=inputs["Loa"], Boa=inputs["Boa"], Ff=inputs["Ff"], Fa=inputs["Fa"],
@@ -359,6 +379,9 @@ def main(argv=None):
     parser.add_argument("--inputs", type=Path, default=DEFAULT_INPUTS, help="the VPP inputs json")
     parser.add_argument("--hull-form", type=Path, default=None,
                         help="JSON of hull particulars replacing the inputs' (waterline_length, ...)")
+    parser.add_argument("--righting-arm", type=Path, default=None,
+                        help="csv of the righting arm replacing the inputs' GZ (series, heel_deg, gz_m: the "
+                             "'mesh' rows of benchmarks/data/righting_arm.csv are the simulator's own boat)")
     parser.add_argument("--out", type=Path, default=REPO / "benchmarks" / "data", help="folder of the csvs")
     parser.add_argument("--figure", type=Path, default=REPO / "benchmarks" / "figures" / "vpp_reference.png")
     parser.add_argument("--flat-min", type=float, default=0.25, help="lowest sail flattening factor")
@@ -379,7 +402,8 @@ def main(argv=None):
     t0 = time.perf_counter()
 
     data, inputs = load_inputs(args.inputs, args.hull_form)
-    yacht = build_yacht(data, inputs, robot_yacht)
+    righting_arm = read_righting_arm(args.righting_arm) if args.righting_arm is not None else None
+    yacht = build_yacht(data, inputs, robot_yacht, righting_arm)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         hydro = fixed_hydro(yacht)
@@ -388,7 +412,8 @@ def main(argv=None):
     cp = inputs["Vol"] / (inputs["Amax"] * inputs["Lwl"])
     cm = inputs["Amax"] / (inputs["Bwl"] * inputs["Tc"])
     print(f"python-vpp {python_vpp.__version__}; inputs {args.inputs}"
-          + (f"; hull form {args.hull_form}" if args.hull_form else ""))
+          + (f"; hull form {args.hull_form}" if args.hull_form else "")
+          + (f"; righting arm {args.righting_arm}" if args.righting_arm else ""))
     print(f"Lwl {inputs['Lwl']:.3f} m, Bwl {inputs['Bwl']:.3f} m, Tc {inputs['Tc']:.3f} m, "
           f"Vol {inputs['Vol']:.4f} m3, WSA {inputs['WSA']:.3f} m2, Amax {inputs['Amax']:.4f} m2, "
           f"mass {inputs['Mass']:.1f} kg; LVR {yacht.lvr:.3f}, BTR {yacht.btr:.3f}, Cp {cp:.3f}, Cm {cm:.3f}")
