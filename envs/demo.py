@@ -44,7 +44,7 @@ class DemoConfig(FleetScenario):
     demo keeps the mesh finer than a plain scenario's 64 (a loop of 121 frames, a few MB)."""
     policy_share: float = 0.5
     """Fraction of the boats sailed by the shipped policy (the first ones); the rest by the autopilot."""
-    time_limit: float = 900.0
+    time_limit: float = 1200.0
     """Per boat [s]; a boat still sailing then counts as timed out."""
     loop_period: float = 60.0
     """The sea repeats every this many seconds [s], so the stage holds one seamless loop of it."""
