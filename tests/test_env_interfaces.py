@@ -288,7 +288,7 @@ def test_single_env_returns_the_final_observation(device):
 
 @pytest.mark.parametrize("task_id", TASK_IDS)
 def test_gymnasium_make_and_make_vec(task_id):
-    policy_size = 15 if task_id == "EBoatWaypointPlus-v0" else 5
+    policy_size = 15 if task_id in ("EBoatWaypointPlus-v0", "EBoatMissionSail-v0") else 5  # the plus observation
     single = gym.make(f"ocean_warp/{task_id}")
     assert isinstance(single.unwrapped, SailingEnvSingle)
     assert single.observation_space.shape == (policy_size,)

@@ -70,8 +70,9 @@ def test_sail_task_config_and_bad_values():
 def test_propeller_off_ignores_a0_and_rewards_level_zero(rng):
     """Random actions (a0 over [-1.2, 1.2], clipped), the same for a propeller-off mission, the same task with
     the motor allowed, and the propeller-off task with a0 zeroed: off, the level is 0 at every decision
-    and a0 changes nothing at all; its reward is the docstring formula with level 0, while the motor-
-    allowed twin's is the same formula with int(5 a0)."""
+    and a0 changes nothing else; its reward is the docstring formula with level 0, while the motor-
+    allowed twin's is the same formula with int(5 a0). (The plus observation's echo of the last action
+    shows a0 as given.)"""
     sail = cheap(MissionSailConfig())
     tasks = {"off": sail, "motor": dataclasses.replace(sail, propeller=True), "off_a0_zero": sail}
     seed = int(rng.integers(1 << 30))
@@ -98,9 +99,12 @@ def test_propeller_off_ignores_a0_and_rewards_level_zero(rng):
             expected = docstring_reward(progress, 0 * levels if name == "off" else levels, env.task.reward)
             np.testing.assert_allclose(b.reward.numpy()[plain], expected[plain], rtol=0, atol=2e-6)
             checked[name] += int(plain.sum())
-        for array in ("reward", "policy_obs", "done"):
+        for array in ("reward", "done"):
             np.testing.assert_array_equal(getattr(envs["off"].buffers, array).numpy(),
                                           getattr(envs["off_a0_zero"].buffers, array).numpy())
+        # the plus observation echoes the last action as given (column 12 is a0); the rest is the same
+        observed = {name: envs[name].buffers.policy_obs.numpy() for name in ("off", "off_a0_zero")}
+        np.testing.assert_array_equal(np.delete(observed["off"], 12, axis=1), np.delete(observed["off_a0_zero"], 12, axis=1))
         np.testing.assert_array_equal(envs["off"].simulator.state.position.numpy(),
                                       envs["off_a0_zero"].simulator.state.position.numpy())
     assert min(checked.values()) >= 24, checked  # most boats sailed on through most decisions
@@ -109,7 +113,7 @@ def test_propeller_off_ignores_a0_and_rewards_level_zero(rng):
 def test_gymnasium_make_and_check_env():
     env = gym.make(f"ocean_warp/{SAIL_ID}")
     assert isinstance(env.unwrapped, SailingEnvSingle) and env.unwrapped.env.task.propeller is False
-    assert env.action_space.shape == (3,) and env.observation_space.shape == (5,)
+    assert env.action_space.shape == (3,) and env.observation_space.shape == (15,)  # the plus observation
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the unbounded observation Box is deliberate
         check_env(env.unwrapped)
