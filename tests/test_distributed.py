@@ -282,7 +282,11 @@ def test_a_failing_rank_stops_the_whole_job(tmp_path, fault):
         assert ("ocean-warp train: rank 1 failed at iteration 1: NonFiniteBatch: NaN or infinity in the batch "
                 "collected at iteration 1: rewards") in err
     elif fault == "kill":
-        assert "rank 1 exited first, killed by signal 9 (SIGKILL)" in describe_failure(err, result.returncode, 2)
+        # Usually torchrun sees the killed rank 1 first; under load, rank 0's collective can abort on the
+        # vanished peer before torchrun polls rank 1 (seen once in a full CPU run), and then rank 0 is first.
+        said = describe_failure(err, result.returncode, 2)
+        assert ("rank 1 exited first, killed by signal 9 (SIGKILL)" in said
+                or "rank 0 exited first, killed by signal 6 (SIGABRT)" in said), said
     else:
         assert f"rank 0 lost contact with the other ranks (one failed, was killed or is stuck for more than the " \
                f"{timeout_s} s timeout)" in err
