@@ -322,7 +322,7 @@ class MissionSailConfig(MissionConfig):
     reward, 1800 s, the physics profile's boat), with the propeller off (a0 ignored, level 0 at every
     decision) and the ``plus`` observation: under sail alone the policy must see its heel, yaw rate, boom
     and rudder, which the seed's five values lack (trained the same 8 minutes on an H100, the seed's
-    observation completes 0 of 20 missions in 10 m/s, this one 6 of 20 and 18 of 20 in 7 m/s;
+    observation completes 0 of 20 missions in 10 m/s, this one 6-9 of 20 and 18-19 of 20 in 7 m/s;
     ``benchmarks/RESULTS.md``, "Sailing fidelity"). Its shipped policy is ``eboat_mission_sail.pt``."""
 
     propeller: bool = False
