@@ -35,6 +35,8 @@ import time
 import numpy as np
 import torch
 
+from ocean_warp.atomic_files import atomic_output
+
 TASK = "EBoatMission-v0"
 
 
@@ -98,6 +100,40 @@ def train(gpus: int, args) -> tuple[str, float]:
     return run_dir, elapsed
 
 
+def scaling(result: dict, base: dict | None) -> tuple[str, str]:
+    """(speed-up, efficiency) of a run against the one-GPU run ``base`` of the same benchmark, as table cells:
+    "1.85x", "93%"; "n/a" for both where no one-GPU run was measured (e.g. ``--gpus 2`` alone)."""
+    if base is None:
+        return "n/a", "n/a"
+    speedup = result["collect_decisions_per_s"] / base["collect_decisions_per_s"]
+    return f"{speedup:.2f}x", f"{speedup / result['gpus']:.0%}"
+
+
+def format_table(results: list[dict], *, num_envs: int, minutes: float, runs: int, threshold: int, evaluated: bool,
+                 device_name: str) -> str:
+    """The markdown table of ``results`` (one dict per GPU count, as :func:`main` gathers them)."""
+    base = next((r for r in results if r["gpus"] == 1), None)
+    lines = [f"### Training on several GPUs: {TASK}, {num_envs} envs per GPU, {minutes:g} min "
+             f"({device_name}, {datetime.date.today()}, torch {torch.__version__})", "",
+             "| GPUs | envs | iterations | samples | collection dec/s | speed-up | efficiency | loop dec/s | "
+             f"time to BCDACA {threshold}/{runs} | final BCDACA | command s |",
+             "|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|"]
+    for r in results:
+        speedup, efficiency = scaling(r, base)
+        if not evaluated:
+            capable = final = "not evaluated"
+        else:
+            capable = ("not reached" if r["capable_iteration"] is None else
+                       f"{r['capable_wall_s']:.0f} s (iteration {r['capable_iteration']})")
+            final = f"{r['final_completed']}/{runs}"
+        lines.append(f"| {r['gpus']} | {r['gpus'] * num_envs} | {r['iterations']} | {r['samples'] / 1e6:.1f} M | "
+                     f"{r['collect_decisions_per_s']:,.0f} | {speedup} | {efficiency} | "
+                     f"{r['loop_decisions_per_s']:,.0f} | {capable} | {final} | {r['command_s']:.0f} |")
+    if base is None:
+        lines += ["", "speed-up and efficiency: n/a, no one-GPU run in this benchmark (add 1 to --gpus, e.g. 1,2)"]
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--gpus", default="1,2", help="comma-separated GPU counts to compare (default 1,2)")
@@ -114,7 +150,10 @@ def main(argv: list[str] | None = None) -> int:
                         "out/multi_gpu_bench)")
     args = parser.parse_args(argv)
     args.out = os.path.abspath(args.out)
-    counts = [int(g) for g in args.gpus.split(",")]
+    try:
+        counts = [int(g) for g in args.gpus.split(",")]
+    except ValueError:
+        parser.error(f"--gpus must be comma-separated whole numbers, e.g. 1,2; got {args.gpus!r}")
     visible = torch.cuda.device_count()
     if not counts or min(counts) < 1 or max(counts) > visible:
         print(f"multi_gpu_bench: --gpus {args.gpus} needs up to {max(counts, default=0)} GPUs; torch sees {visible}",
@@ -131,28 +170,11 @@ def main(argv: list[str] | None = None) -> int:
         results.append(result)
         print(json.dumps(result), flush=True)
 
-    base = next((r for r in results if r["gpus"] == 1), None)
     name = torch.cuda.get_device_name(0)
-    lines = [f"### Training on several GPUs: {TASK}, {args.num_envs} envs per GPU, {args.minutes:g} min "
-             f"({name}, {datetime.date.today()}, torch {torch.__version__})", "",
-             "| GPUs | envs | iterations | samples | collection dec/s | speed-up | efficiency | loop dec/s | "
-             f"time to BCDACA {threshold}/{args.runs} | final BCDACA | command s |",
-             "|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|"]
-    for r in results:
-        speedup = r["collect_decisions_per_s"] / base["collect_decisions_per_s"] if base else float("nan")
-        if args.skip_eval:
-            capable = final = "not evaluated"
-        else:
-            capable = ("not reached" if r["capable_iteration"] is None else
-                       f"{r['capable_wall_s']:.0f} s (iteration {r['capable_iteration']})")
-            final = f"{r['final_completed']}/{args.runs}"
-        lines.append(f"| {r['gpus']} | {r['gpus'] * args.num_envs} | {r['iterations']} | {r['samples'] / 1e6:.1f} M | "
-                     f"{r['collect_decisions_per_s']:,.0f} | {speedup:.2f}x | {speedup / r['gpus']:.0%} | "
-                     f"{r['loop_decisions_per_s']:,.0f} | {capable} | {final} | {r['command_s']:.0f} |")
-    table = "\n".join(lines)
+    table = format_table(results, num_envs=args.num_envs, minutes=args.minutes, runs=args.runs, threshold=threshold,
+                         evaluated=not args.skip_eval, device_name=name)
     print("\n" + table)
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "results.json"), "w") as stream:
+    with atomic_output(os.path.join(args.out, "results.json")) as temporary, open(temporary, "w") as stream:
         json.dump({"device": name, "date": str(datetime.date.today()), "settings": vars(args), "results": results,
                    "table": table}, stream, indent=2)
     return 0

@@ -17,8 +17,9 @@ import sys
 import time
 
 import numpy as np
-import warp as wp
 
+from ocean_warp.cli_support import job_parser, plural, report_error
+from ocean_warp.devices import resolve_device
 from ocean_warp.validation import require_in_range, require_positive
 
 from .core import SailingEnv
@@ -143,7 +144,8 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
 
 
 def _summary(config: DemoConfig, result: DemoResult, hull: str) -> str:
-    lines = [f"{config.boats} E-Boats ({config.policy_boats} policy, {config.boats - config.policy_boats} autopilot), "
+    autopilot_boats = config.boats - config.policy_boats
+    lines = [f"{plural(config.boats, 'E-Boat')} ({config.policy_boats} policy, {autopilot_boats} autopilot), "
              f"{hull} hull, JONSWAP Hs {config.sea_state} m, wind {config.wind} m/s with gusts, seed {config.seed}"]
     for name, controller in result.evaluation.results.items():
         times = controller.time_s[controller.success]
@@ -157,10 +159,9 @@ def _summary(config: DemoConfig, result: DemoResult, hull: str) -> str:
 
 def _parser() -> argparse.ArgumentParser:
     defaults = DemoConfig()
-    parser = argparse.ArgumentParser(
-        prog="ocean-warp demo", formatter_class=argparse.ArgumentDefaultsHelpFormatter,
-        description="A fleet of E-Boats sails the BCDACA mission in waves, half with the shipped policy and half "
-        "with the classical autopilot; writes a USD stage with a preview PNG, trajectories.png and results.csv.")
+    parser = job_parser("demo", "A fleet of E-Boats sails the BCDACA mission in waves, half with the shipped "
+                        "policy and half with the classical autopilot; writes a USD stage with a preview PNG, "
+                        "trajectories.png and results.csv.")
     add_scenario_arguments(parser, defaults)
     parser.add_argument("--policy-share", type=float, default=defaults.policy_share,
                         help="fraction of the boats sailed by the policy (0-1)")
@@ -180,15 +181,14 @@ def main(argv: list[str] | None = None) -> int:
     try:
         config = DemoConfig(**scenario_arguments(args), policy_share=args.policy_share, time_limit=args.time_limit,
                             loop_period=args.loop_period, usd=not args.no_usd)
-        device = str(wp.get_device(args.device))
+        device = resolve_device(args.device, name="--device")
         os.makedirs(args.out, exist_ok=True)
-    except (ValueError, RuntimeError, OSError) as error:  # a bad setting; an unknown device; an unusable --out
-        print(f"ocean-warp demo: {error}", file=sys.stderr)
-        return 2
+    except (ValueError, OSError) as error:  # a bad setting or device; an unusable --out
+        return report_error(parser.prog, str(error))
     try:
         result = run_demo(config, device=device, out=args.out, progress=not args.no_progress)
     except OSError as error:  # a file could not be written
-        print(f"ocean-warp demo: {error}", file=sys.stderr)
+        print(f"{parser.prog}: {error}", file=sys.stderr)
         return 1
     hull = demo_task(config, device).simulator.boat.hydrostatics.value
     print(result.evaluation.format_table())

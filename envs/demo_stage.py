@@ -1,5 +1,7 @@
 """The demo's USD stage: a mission fleet recorded frame by frame from inside each decision, on one
-seamless loop of its ocean, with the route's buoys and the wind arrow; then validated and previewed.
+seamless loop of its ocean, with the route's buoys, its path from the start (A for BCDACA) and the wind
+arrow; then validated and previewed. The stage plays in real time at ``time_codes_per_second`` (default
+24, Blender's frame rate), whatever the number of frames recorded per decision.
 
 A boat that has finished its mission (or failed it) is held where it ended: the environment restarts it
 at the start for a new episode, which the stage does not show.
@@ -25,18 +27,21 @@ class MissionStageRecorder:
     def __init__(self, env: SailingEnv, path: str | os.PathLike, *, frames_per_decision: int,
                  ocean_resolution: int = 32, ocean_loop: bool | None = None, **options):
         """``ocean_loop`` None: one seamless loop where the ocean has a ``loop_period``, else a mesh per frame;
-        ``options``: more of :class:`~ocean_warp.usd.StageRecorder`'s (``instanced``, ``ascii``, ...)."""
+        ``options``: more of :class:`~ocean_warp.usd.StageRecorder`'s (``instanced``, ``ascii``,
+        ``time_codes_per_second``, ...)."""
         self.env = env
         self.frames_per_decision = frames_per_decision
         ocean = env.simulator.ocean
         loop = ocean.config.loop_period is not None if ocean_loop is None else ocean_loop
         origin = env.origin.numpy()[0, :2].astype(np.float64)
         route = np.asarray(env.task.route, dtype=np.float64) + origin
+        start = np.asarray(env.task.start_point, dtype=np.float64) + origin
         wind = env.simulator.state
         self.recorder = StageRecorder(
             path, fps=float(frames_per_decision) / env.decision_period, ocean=ocean,
             ocean_resolution=ocean_resolution, ocean_loop=loop, boats=env.num_envs, boat=env.task.simulator.boat,
-            route=route, route_labels=_waypoint_names(env.task.route), wind_direction=float(wind.wind_mean_direction.numpy()[0]),
+            route=route, route_labels=_waypoint_names(env.task.route), route_start=start,
+            wind_direction=float(wind.wind_mean_direction.numpy()[0]),
             wind_speed=float(wind.wind_mean_speed.numpy()[0]), **options)
         self._held = np.zeros(env.num_envs, dtype=bool)
         self._held_frame: dict[str, np.ndarray] = {}

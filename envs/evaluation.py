@@ -79,6 +79,16 @@ import torch
 import warp as wp
 
 from ocean_warp.atomic_files import atomic_output
+from ocean_warp.cli_support import (
+    add_device_argument,
+    check_options,
+    checked_device,
+    fail,
+    finite_above,
+    finite_at_least,
+    job_parser,
+    plural,
+)
 from ocean_warp.fleet import BoatStatus
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.replay import ReplayedLaunches
@@ -112,7 +122,7 @@ own_tacks / own_gybes are the controller's own counts where it keeps them (the a
 class Controller(Protocol):
     """What sails the runs: ``reset(env)`` once before the batch starts, ``act(env)`` before each decision
     (it writes ``env.actions`` / ``env.buffers.actions``), a ``name``. Optionally ``own_counts()``: its own
-    per-run counters ({"tacks": (N,), "gybes": (N,)}), read when runs end."""
+    per-run counters ({"tacks": (N,), "gybes": (N,)}; NaN for runs it keeps none for), read when runs end."""
 
     name: str
 
@@ -219,7 +229,8 @@ class ControllerResult:
     start_point: np.ndarray
     """(2,) where the runs start [m] (before the task's jitter)."""
     own_tacks: np.ndarray | None = None
-    """(N,) the controller's own tack count, where it keeps one."""
+    """(N,) the controller's own tack count, where it keeps one: NaN for the runs of a controller that keeps
+    none (in a :class:`FleetController` of several); None where no run's controller keeps one."""
     own_gybes: np.ndarray | None = None
 
     def __post_init__(self):
@@ -251,7 +262,7 @@ class ControllerResult:
         """The result of only the ``runs`` (indices or an (N,) bool mask), named ``name``; its metrics are
         recomputed over them (e.g. one controller's boats of a :class:`FleetController`)."""
         index = np.flatnonzero(runs) if np.asarray(runs).dtype == bool else np.asarray(runs, dtype=np.int64)
-        pick = (lambda values: None if values is None else values[index])  # noqa: E731
+        pick = (lambda values: None if values is None else _kept_counts(values[index]))  # noqa: E731
         return ControllerResult(name=name, paths=[self.paths[i] for i in index], success=self.success[index],
                                 time_s=self.time_s[index], waypoints=self.waypoints[index], status=self.status[index],
                                 time_out=self.time_out[index], wind_direction=self.wind_direction[index],
@@ -295,8 +306,7 @@ class ControllerResult:
                          "time_s": float(self.time_s[i]), "waypoints": int(self.waypoints[i]),
                          "distance_m": float(self.distance_m[i]), "tacks": int(self.tacks[i]),
                          "gybes": int(self.gybes[i]),
-                         "own_tacks": "" if self.own_tacks is None else int(self.own_tacks[i]),
-                         "own_gybes": "" if self.own_gybes is None else int(self.own_gybes[i]),
+                         "own_tacks": _count_cell(self.own_tacks, i), "own_gybes": _count_cell(self.own_gybes, i),
                          "motor_use": float(self.motor_use[i]), "start_x_m": float(path.xy[0, 0]),
                          "start_y_m": float(path.xy[0, 1]), "start_heading_deg": math.degrees(path.heading[0])})
         return rows
@@ -337,6 +347,18 @@ class FleetController:
             controller.act(env)
             torch.where(mask, actions, self._actions, out=self._actions)
         actions.copy_(self._actions)
+
+    def own_counts(self) -> dict[str, np.ndarray]:
+        """Each run's tack and gybe counters from its own controller, where that controller keeps them (the
+        autopilot's runs); NaN for the runs of controllers that keep none (a policy's)."""
+        runs = self.groups[0][1].shape[0]
+        counts = {"tacks": np.full(runs, np.nan), "gybes": np.full(runs, np.nan)}
+        for controller, mask in self.groups:
+            own_counts = getattr(controller, "own_counts", None)
+            if own_counts is not None:
+                for key, values in own_counts().items():
+                    counts[key][mask] = np.asarray(values, dtype=np.float64)[mask]
+        return counts
 
 
 class RecordedDecision:
@@ -433,7 +455,8 @@ def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = Fa
     wind_direction = state.wind_mean_direction.numpy().astype(np.float64).copy()
     outcome = {name: np.zeros(n, dtype=kind) for name, kind in (
         ("success", bool), ("time_s", np.float64), ("waypoints", np.int64), ("status", np.int64),
-        ("time_out", bool), ("own_tacks", np.int64), ("own_gybes", np.int64))}
+        ("time_out", bool))}
+    outcome.update(own_tacks=np.full(n, np.nan), own_gybes=np.full(n, np.nan))
     length = np.zeros(n, dtype=np.int64)
     finished = np.zeros(n, dtype=bool)
     own_counts = getattr(controller, "own_counts", None)
@@ -471,15 +494,30 @@ def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = Fa
             bar.update(1)
             bar.set_postfix_str(f"ended {finished.sum()}/{n}, completed {outcome['success'].sum()}", refresh=False)
             if finished.all():
+                # Every run ended before the time limit: the job is done, so the bar ends full (at the
+                # decisions sailed) instead of stopping part-way.
+                bar.total = k + 1
+                bar.refresh()
                 break
     paths = [RunPath(xy=xy[:length[i] + 1, i].copy(), heading=heading[:length[i] + 1, i].copy(),
                      propeller=levels[:length[i], i].copy(), reached=reached[:length[i] + 1, i].copy())
              for i in range(n)]
-    own = {} if own_counts is None else {"own_tacks": outcome["own_tacks"], "own_gybes": outcome["own_gybes"]}
+    own = {} if own_counts is None else {"own_tacks": _kept_counts(outcome["own_tacks"]),
+                                         "own_gybes": _kept_counts(outcome["own_gybes"])}
     return ControllerResult(name=controller.name, paths=paths, success=outcome["success"], time_s=outcome["time_s"],
                             waypoints=outcome["waypoints"], status=outcome["status"], time_out=outcome["time_out"],
                             wind_direction=wind_direction, routes=routes,
                             start_point=np.array(env.task.start_point, dtype=np.float64), **own)
+
+
+def _kept_counts(values: np.ndarray) -> np.ndarray | None:
+    """Own counts (N,) as a result keeps them: None where no run has one (all NaN)."""
+    return None if np.isnan(values).all() else values
+
+
+def _count_cell(values: np.ndarray | None, run: int):
+    """A run's own count in runs.csv: the whole number, or empty where its controller keeps none."""
+    return "" if values is None or np.isnan(values[run]) else int(values[run])
 
 
 def _replace_given(config, **fields):
@@ -618,7 +656,8 @@ class MissionEvaluation:
     def _title(self) -> str:
         s = self.settings
         prefix = f"{s['task']}: " if s.get("task") else ""
-        return f"{prefix}{_course_text(self.task)}, {s['runs']} runs: {_conditions_text(self.task, s['seed'])}"
+        runs = plural(s["runs"], "run")
+        return f"{prefix}{_course_text(self.task)}, {runs}: {_conditions_text(self.task, s['seed'])}"
 
 
 def _panel(result: ControllerResult, shared_route: bool, wind_per_run: bool) -> PanelData:
@@ -723,8 +762,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="ocean-warp eval", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = job_parser("eval", __doc__, raw_description=True)
     parser.add_argument("--task", default=DEFAULT_TASK, metavar="ID",
                         help=f"the task to sail: {', '.join(TASK_IDS)}, with or without 'ocean_warp/' "
                              f"(default {DEFAULT_TASK})")
@@ -746,29 +784,25 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
                         help="simulated time per run [s] (default: the task's episode time, 1800 for the missions)")
     parser.add_argument("--out", default="out/eval", help="folder for the PNG, CSVs and NPZ (default out/eval)")
-    parser.add_argument("--device", default="cpu", help='Warp device: "cpu", "cuda" or "cuda:N" (default cpu)')
+    add_device_argument(parser)
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
 
 def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
-    """Exit with status 2 (argparse's usage and one line) on option values that cannot work together."""
-    if args.runs < 1:
-        parser.error(f"--runs must be >= 1, got {args.runs}")
-    for option, value in (("--sea-state", args.sea_state), ("--wind", args.wind)):
-        if value is not None and not (math.isfinite(value) and value >= 0.0):
-            parser.error(f"{option} must be a finite number >= 0, got {value}")
-    if args.time_limit is not None and not (math.isfinite(args.time_limit) and args.time_limit > 0.0):
-        parser.error(f"--time-limit must be > 0 [s], got {args.time_limit}")
+    """Exit with status 2 and one line on option values that cannot work (alone or together)."""
+    check_options(parser, (
+        ("--runs", args.runs, args.runs >= 1, "a whole number >= 1"),
+        ("--sea-state", args.sea_state, args.sea_state is None or finite_at_least(args.sea_state, 0.0),
+         "a finite number >= 0 [m]"),
+        ("--wind", args.wind, args.wind is None or finite_at_least(args.wind, 0.0), "a finite number >= 0 [m/s]"),
+        ("--time-limit", args.time_limit, args.time_limit is None or finite_above(args.time_limit, 0.0),
+         "a number > 0 [s]"),
+    ))
     if args.no_policy and args.no_autopilot:
-        parser.error("--no-policy and --no-autopilot leave nothing to run")
+        fail(parser, "--no-policy and --no-autopilot leave nothing to run")
     if args.no_policy and args.policy is not None:
-        parser.error("--policy and --no-policy contradict each other")
-
-
-def _fail(parser: argparse.ArgumentParser, message: str) -> None:
-    """Exit with status 2 and one line on stderr (no usage, no traceback)."""
-    parser.exit(2, f"{parser.prog}: error: {message}\n")
+        fail(parser, "--policy and --no-policy contradict each other")
 
 
 def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name: str) -> Policy | None:
@@ -783,17 +817,17 @@ def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name:
             path = shipped_policy_path(name)
         except ValueError:
             if args.no_autopilot:
-                _fail(parser, f"no policy is shipped for {name} and --no-autopilot leaves nothing to run; "
-                              "pass --policy PATH")
+                fail(parser, f"no policy is shipped for {name} and --no-autopilot leaves nothing to run; "
+                             "pass --policy PATH")
             print(f"no policy is shipped for {name}: sailing the autopilot only (--policy PATH evaluates one)")
             return None
         except FileNotFoundError as error:
-            _fail(parser, f"{error}; --no-policy sails the autopilot alone")
+            fail(parser, f"{error}; --no-policy sails the autopilot alone")
     try:
         policy = load_policy(path)
     except CheckpointError as error:
         hint = "; --no-policy sails the autopilot alone" if args.policy is None else ""
-        _fail(parser, f"{error}{hint}")
+        fail(parser, f"{error}{hint}")
     print(f"policy {path}: for {policy.task}, observation {policy.observation!r} ({policy.num_obs} values)")
     return policy
 
@@ -808,22 +842,22 @@ def main(argv=None) -> int:
     try:
         name = task_name(args.task)
     except ValueError as error:
-        _fail(parser, f"--task: {error}")
+        fail(parser, f"--task: {error}")
+    device = checked_device(parser, args.device)
     try:
-        device = wp.get_device(args.device)
         task = evaluation_task(name, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                                time_limit=args.time_limit)
-    except (RuntimeError, ValueError) as error:
-        parser.error(str(error))
+    except ValueError as error:
+        fail(parser, str(error))
     policy = None if args.no_policy else _policy_for(parser, args, name)
-    print(f"{name} ({_course_text(task)}): {args.runs} runs per controller, {_conditions_text(task, args.seed)}, "
-          f"device {device}")
+    print(f"{name} ({_course_text(task)}): {plural(args.runs, 'run')} per controller, "
+          f"{_conditions_text(task, args.seed)}, device {device}")
     try:
         evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                                       device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,
                                       progress=not args.no_progress, task=name)
     except ValueError as error:  # a policy whose observation the task cannot give
-        _fail(parser, str(error))
+        fail(parser, str(error))
     paths = evaluation.write(args.out)
     print(evaluation.format_table())
     for path in paths.values():

@@ -8,6 +8,7 @@ import dataclasses
 
 import warp as wp
 
+from ocean_warp.cli_support import add_device_argument
 from ocean_warp.eboat import Hydrostatics
 from ocean_warp.validation import require_in_range, require_int_in_range
 
@@ -113,7 +114,7 @@ def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScena
     parser.add_argument("--ocean-margin", type=float, default=defaults.ocean_margin, metavar="METRES",
                         help="water shown beyond the route and the boats [m]")
     parser.add_argument("--ocean-normals", action="store_true", help="write the ocean mesh's vertex normals")
-    parser.add_argument("--device", default="cpu", help='Warp device: "cpu", "cuda" or "cuda:N"')
+    add_device_argument(parser)
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 

@@ -155,8 +155,9 @@ def cross_track_spread(paths: Sequence[np.ndarray], reached: Sequence[np.ndarray
     For each leg, every run that completed it (reached its waypoint) is resampled at ``points`` points
     equally spaced in along-track distance along its own leg (:func:`cross_track_profile`); at each point
     the population standard deviation (ddof 0) of the cross-track offsets across those runs is taken, and
-    the leg's spread is the mean over its points. A leg completed by fewer than two runs has no spread
-    (NaN). The overall value is the mean over the legs that have one (NaN if none).
+    the leg's spread is the mean over its points. A run's leg of no length (a waypoint where the leg starts)
+    has no track to stray from and is left out; a leg completed by fewer than two runs has no spread (NaN).
+    The overall value is the mean over the legs that have one (NaN if none).
     """
     routes = np.asarray(route, dtype=np.float64)
     if routes.ndim < 3:  # one route for every run
@@ -169,7 +170,7 @@ def cross_track_spread(paths: Sequence[np.ndarray], reached: Sequence[np.ndarray
         profiles = []
         for xy, seen, corner in zip(paths, reached, corners):
             seen = np.asarray(seen).reshape(-1)
-            if seen.size == 0 or seen.max() <= leg:
+            if seen.size == 0 or seen.max() <= leg or np.array_equal(corner[leg], corner[leg + 1]):
                 continue
             index = leg_indices(seen, leg)
             profiles.append(cross_track_profile(np.asarray(xy)[index], corner[leg], corner[leg + 1], points))

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import os
 import pickle
-import zipfile
+import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -32,6 +32,8 @@ __all__ = ["CHECKPOINT_FORMAT", "CheckpointError", "Policy", "save_checkpoint", 
            "export_policy"]
 
 CHECKPOINT_FORMAT = "ocean_warp.policy/1"
+_ZIP_MAGIC = b"PK\x03\x04"
+"""How a file written by ``torch.save`` begins (a zip archive)."""
 _POLICY_KEYS = ("task", "observation", "num_obs", "num_actions", "actor_config", "actor_state_dict")
 
 
@@ -53,14 +55,27 @@ def read_checkpoint(path: str | os.PathLike, *, map_location: str | torch.device
             objects other than tensors and plain data), or is not an ocean_warp policy checkpoint.
     """
     path = os.fspath(path)
+    if os.path.isdir(path):
+        raise CheckpointError(f"checkpoint {path!r} is a folder, not an ocean_warp policy checkpoint file")
     if not os.path.isfile(path):
         raise CheckpointError(f"checkpoint {path!r}: no such file")
+    with open(path, "rb") as stream:
+        start = stream.read(len(_ZIP_MAGIC))
+    if start != _ZIP_MAGIC:
+        raise CheckpointError(f"checkpoint {path!r} is not an ocean_warp policy checkpoint: not a file written by "
+                              "torch.save (text, another format, or damaged at its start)")
     try:
         data = torch.load(path, map_location=map_location, weights_only=True)
-    except (RuntimeError, EOFError, pickle.UnpicklingError, zipfile.BadZipFile, ValueError, OSError) as error:
-        first_line = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
-        raise CheckpointError(f"checkpoint {path!r} could not be read as a torch file (truncated, corrupt, or "
-                              f"holding more than tensors and plain data): {first_line}") from None
+    except pickle.UnpicklingError as error:
+        # torch's message advises ways to load what it refused (weights_only=False, allow-listing), which would
+        # run or build whatever the file names: never repeated here, only the name of what it refused.
+        refused = re.search(r"Unsupported global: GLOBAL ([\w.]+)", str(error))
+        what = refused.group(1) if refused else "objects"
+        raise CheckpointError(f"checkpoint {path!r} is not an ocean_warp policy checkpoint: it holds {what}, not "
+                              "only tensors and plain data, and such files are never loaded") from None
+    except Exception:  # noqa: BLE001 - torch's restricted unpickler raises anything (IndexError, KeyError, ...)
+        raise CheckpointError(f"checkpoint {path!r} is not an ocean_warp policy checkpoint: it could not be read as "
+                              "a torch file (truncated or corrupt)") from None
     if not isinstance(data, dict):
         raise CheckpointError(f"checkpoint {path!r} holds a {type(data).__name__}, not an ocean_warp policy "
                               "checkpoint (a dict)")

@@ -46,6 +46,7 @@ import warp as wp
 
 from ocean_warp.validation import require_int_in_range
 
+from ocean_warp.devices import init_warp
 from .core import EnvBuffers, SailingEnv, episode_log
 from .shared_ocean import SharedOcean, ocean_updates_per_decision
 from .task_kernels import POLICY_OBS, PRIVILEGED_OBS
@@ -141,6 +142,7 @@ def _worker_main(conn, shared: dict[str, torch.Tensor], ocean_slots: torch.Tenso
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     torch.set_num_threads(1)
     wp.config.log_level = max(log_level, logging.WARNING)
+    init_warp()  # without Warp's no-driver warning from every worker of a machine without a GPU
     try:
         shard = _Shard(task, shared, first, count, seed, ocean_slots)
         conn.send(("ok", shard.env.simulator.ocean.significant_wave_height))

@@ -39,6 +39,7 @@ import hashlib
 import io
 import json
 import math
+import numbers
 import os
 import sys
 import time
@@ -49,6 +50,8 @@ import numpy as np
 import torch
 
 from ocean_warp.atomic_files import atomic_output
+from ocean_warp.cli_support import finite_above, job_parser, option_problem, plural, report_error
+from ocean_warp.devices import resolve_device
 
 from .agents import TrainConfig, agent_config
 from .core import SailingEnv
@@ -226,7 +229,7 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
     """
     context = RankContext.from_env() if rank is None else rank
     if not context.distributed:
-        device = _resolve_device(device)
+        device = resolve_device(device)
     ranks = Ranks.start(context, device, dist_timeout)
     result = _train(config, ranks, device=device, seed=seed, run_dir=run_dir, run_name=run_name,
                     runs_root=runs_root, num_envs=num_envs, iterations=iterations, minutes=minutes, resume=resume,
@@ -243,9 +246,12 @@ def _train(config: TrainConfig, ranks: Ranks, *, device: str, seed: int, run_dir
     error = None
     try:
         if context.distributed:
-            device = _resolve_device(rank_device(context, device))
+            device = resolve_device(rank_device(context, device))
         is_cuda = device.startswith("cuda")
-        num_envs = config.num_envs(is_cuda) if num_envs is None else int(num_envs)
+        num_envs = config.num_envs(is_cuda) if num_envs is None else num_envs
+        if isinstance(num_envs, bool) or not isinstance(num_envs, numbers.Integral) or num_envs < 1:
+            raise ValueError(f"num_envs must be a whole number >= 1, got {num_envs!r}")
+        num_envs = int(num_envs)
         iterations = config.iterations if iterations is None else int(iterations)
         if iterations < 1:
             raise ValueError(f"iterations must be >= 1, got {iterations}")
@@ -555,20 +561,6 @@ def _check_workers(workers: int, device: str, num_envs: int) -> None:
                          "workers 1 (the GPU simulates every environment in one process)")
 
 
-def _resolve_device(device: str) -> str:
-    device = str(device)
-    if device == "cuda":
-        device = "cuda:0"
-    if device != "cpu" and not (device.startswith("cuda:") and device[5:].isdigit()):
-        raise ValueError(f"device must be 'cpu', 'cuda' or 'cuda:N', got {device!r}")
-    if device.startswith("cuda"):
-        import warp as wp
-
-        if not wp.is_cuda_available() or int(device[5:]) >= wp.get_cuda_device_count():
-            raise ValueError(f"device {device!r}: Warp sees {wp.get_cuda_device_count()} CUDA device(s)")
-    return device
-
-
 def _progress_bar(enabled: bool, total: int, task: str):
     if not enabled:
         return None
@@ -621,22 +613,11 @@ def _replace_path(obj: Any, names: list[str], value: Any, full: str) -> Any:
     return dataclasses.replace(obj, **{names[0]: value})
 
 
-class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
-    """Defaults shown where they say something: not None, not when the help already names the default."""
-
-    def _get_help_string(self, action):
-        if action.default is None or "default" in (action.help or ""):
-            return action.help
-        return super()._get_help_string(action)
-
-
 def _parser() -> argparse.ArgumentParser:
     from .agents import AGENT_CONFIGS
 
-    parser = argparse.ArgumentParser(
-        prog="ocean-warp train", description="Train a sailing policy with rsl-rl PPO (progress bar, TensorBoard "
-        "logs, atomic checkpoints in runs/<task>/<date>_<name>/, the policy exported as policy.pt).",
-        formatter_class=_HelpFormatter)
+    parser = job_parser("train", "Train a sailing policy with rsl-rl PPO (progress bar, TensorBoard logs, atomic "
+                        "checkpoints in runs/<task>/<date>_<name>/, the policy exported as policy.pt).")
     parser.add_argument("--task", default="EBoatWaypoint-v0", choices=list(AGENT_CONFIGS), help="task id")
     parser.add_argument("--device", default=argparse.SUPPRESS,
                         help="cpu, cuda or cuda:N (simulator and networks; default: cpu, or cuda with --gpus)")
@@ -644,7 +625,7 @@ def _parser() -> argparse.ArgumentParser:
                         help="parallel boats per process (rank) (default: the task's, 256 on the CPU, 4096 on a GPU)")
     length = parser.add_argument_group("how long (either, or both: the first reached ends it)")
     length.add_argument("--iterations", type=int, default=None, help="PPO iterations (default: the task's)")
-    length.add_argument("--minutes", type=float, default=None, help="wall-time limit")
+    length.add_argument("--minutes", type=float, default=None, help="wall-time limit [minutes]")
     parser.add_argument("--seed", type=int, default=0, help="seed of environments, networks and sampling")
     parser.add_argument("--run-name", default=None, help="suffix of the run folder")
     parser.add_argument("--runs-root", default="runs", help="folder that holds <task>/<date>_<name>/")
@@ -666,26 +647,41 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _option_problem(args: argparse.Namespace) -> str | None:
+    """What is wrong with the options' values, in one line; None when nothing is."""
+    return option_problem((
+        ("--num-envs", args.num_envs, args.num_envs is None or args.num_envs >= 1, "a whole number >= 1"),
+        ("--iterations", args.iterations, args.iterations is None or args.iterations >= 1, "a whole number >= 1"),
+        ("--minutes", args.minutes, args.minutes is None or finite_above(args.minutes, 0.0), "a number > 0"),
+        ("--workers", args.workers, args.workers >= 1, "a whole number >= 1"),
+        ("--dist-timeout", args.dist_timeout, finite_above(args.dist_timeout, 0.0), "a number of seconds > 0"),
+    ))
+
+
 def main(argv: list[str] | None = None) -> int:
     """``ocean-warp train``: 0 on success, 2 for bad options or checkpoints, 1 when a rank failed (the
     launcher: torchrun's status)."""
     argv = sys.argv[1:] if argv is None else list(argv)
-    args = _parser().parse_args(argv)
+    parser = _parser()
+    args = parser.parse_args(argv)
+    problem = _option_problem(args)
+    if problem is not None:
+        return report_error(parser.prog, problem)
     device = getattr(args, "device", None)
     if args.gpus is not None:
         problem = gpus_problem(args.gpus, device, visible_gpus())
         if problem is not None:
-            print(f"ocean-warp train: {problem}", file=sys.stderr)
-            return 2
+            return report_error(parser.prog, problem)
         if int(args.gpus) > 1:
             return launch(torchrun_command(argv, int(args.gpus)), int(args.gpus))
         device = "cuda"
     try:
         context = RankContext.from_env()
     except ValueError as error:
-        print(f"ocean-warp train: {error}", file=sys.stderr)
-        return 2
+        return report_error(parser.prog, str(error))
     try:
+        if device is not None and not context.distributed:
+            resolve_device(device, name="--device")  # named as the option; train() resolves it again
         config = apply_overrides(agent_config(args.task), args.overrides)
         if args.minutes is not None and args.iterations is None:
             iterations = 10**9
@@ -697,17 +693,16 @@ def main(argv: list[str] | None = None) -> int:
                        dist_timeout=args.dist_timeout)
     except RankFailure as error:
         if context.is_main or not error.everywhere:  # the others hold the same message as rank 0
-            print(f"ocean-warp train: {error}", file=sys.stderr)
+            print(f"{parser.prog}: {error}", file=sys.stderr)
         return 1
     except (CheckpointError, ValueError) as error:
-        print(f"ocean-warp train: {_rank_prefix(context)}{error}", file=sys.stderr)
-        return 2
+        return report_error(parser.prog, f"{_rank_prefix(context)}{error}")
     if not context.is_main:
         return 0
     ended = [row for row in result.history if math.isfinite(row.get("success_rate", math.nan))]
     last = (f"last iteration with ended episodes ({ended[-1]['iteration']}): {_episode_summary(ended[-1])}"
             if ended else "no episode ended")
-    print(f"{result.iterations} iterations in {result.wall_time:.0f} s; {last}")
+    print(f"{plural(result.iterations, 'iteration')} in {result.wall_time:.0f} s; {last}")
     print(f"checkpoint {result.checkpoint}\npolicy     {result.policy}")
     if result.parameter_checksums:
         print(f"{result.world_size} ranks ended with identical networks (sha256 {result.parameter_checksums[0][:16]}...)")

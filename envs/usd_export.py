@@ -3,6 +3,9 @@ sea, steered by the shipped policy, the classical autopilot or fixed commands, f
 
     ocean-warp export-usd --boats 8 --sea-state 0.5 --wind 8 --duration 120 --controller autopilot \\
         --out out/autopilot.usdc
+
+``--fps`` is how many frames are recorded per simulated second; ``--playback-fps`` the stage's time codes
+(and frames) per second, 24 by default, so that Blender (24 fps) plays it in real time.
 """
 
 from __future__ import annotations
@@ -15,8 +18,11 @@ import time
 
 import numpy as np
 import torch
-import warp as wp
 
+from ocean_warp.cli_support import job_parser, plural, report_error
+from ocean_warp.devices import resolve_device
+from ocean_warp.usd.recorder import TIME_CODES_PER_SECOND
+from ocean_warp.usd.stage_file import check_stage_path
 from ocean_warp.validation import require_in_range, require_positive
 
 from .core import SailingEnv
@@ -48,6 +54,9 @@ class ExportConfig(FleetScenario):
     """Make the sea repeat every this many seconds and store one loop of it (None: a mesh per frame)."""
     instanced: bool | None = None
     """Point instancers (True), a prim per boat (False), or chosen by the fleet's size (None)."""
+    time_codes_per_second: float = TIME_CODES_PER_SECOND
+    """The stage's time codes (and frames) per second of playback [1/s]: 24 (Blender's default), 30, or any
+    positive rate; one simulated second is this many time codes, so the stage plays in real time."""
 
     def __post_init__(self):
         super().__post_init__()
@@ -59,6 +68,7 @@ class ExportConfig(FleetScenario):
             raise ValueError(f"{owner}.actions must be three numbers in [-1, 1], got {self.actions!r}")
         if self.loop_period is not None:
             require_positive(owner, "loop_period", self.loop_period, unit=" [s]")
+        require_positive(owner, "time_codes_per_second", self.time_codes_per_second, unit=" [1/s]")
 
 
 class FixedController:
@@ -100,7 +110,8 @@ def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: st
     controller.reset(env)
     decision = RecordedDecision(env, config.frames_per_second)
     recorder = MissionStageRecorder(env, path, frames_per_decision=config.frames_per_second,
-                                    instanced=config.instanced, ascii=ascii, **config.stage_options())
+                                    instanced=config.instanced, ascii=ascii,
+                                    time_codes_per_second=config.time_codes_per_second, **config.stage_options())
     decisions = int(round(config.duration / env.decision_period))
     try:
         for k in tqdm(range(decisions), desc="export-usd", unit="decision", disable=not progress):
@@ -123,11 +134,13 @@ def _actions(text: str) -> tuple[float, float, float]:
     return values
 
 
+PROG = "ocean-warp export-usd"
+
+
 def _parser() -> argparse.ArgumentParser:
     d = ExportConfig()
-    parser = argparse.ArgumentParser(
-        prog="ocean-warp export-usd", formatter_class=argparse.ArgumentDefaultsHelpFormatter,
-        description="Record a fleet on the BCDACA course in a JONSWAP sea to a USD stage (Z up, metres), with a "
+    parser = job_parser(
+        "export-usd", "Record a fleet on the BCDACA course in a JONSWAP sea to a USD stage (Z up, metres), with a "
         "preview PNG beside it.")
     add_scenario_arguments(parser, d)
     parser.add_argument("--duration", type=float, default=d.duration, metavar="SECONDS", help="simulated time [s]")
@@ -140,11 +153,14 @@ def _parser() -> argparse.ArgumentParser:
                         help="a sea that repeats every this many seconds, stored once as a seamless loop")
     layout = parser.add_mutually_exclusive_group()
     layout.add_argument("--instanced", dest="instanced", action="store_true", default=None,
-                        help="point instancers for the boats (default: above 64 boats)")
+                        help="point instancers for the boats (by default: above 64 boats)")
     layout.add_argument("--prims", dest="instanced", action="store_false", default=argparse.SUPPRESS,
-                        help="one prim per boat (default: up to 64 boats)")
+                        help="one prim per boat (by default: up to 64 boats)")
+    parser.add_argument("--playback-fps", type=float, default=d.time_codes_per_second, metavar="RATE",
+                        help="the stage's time codes (frames) per second of playback, e.g. 24 or 30: one simulated "
+                        "second plays in one second (--fps is how many frames are recorded per second)")
     parser.add_argument("--usda", action="store_true", help="text (.usda) instead of crate (.usdc)")
-    parser.add_argument("--out", default="out/scenario.usdc", help="the stage to write")
+    parser.add_argument("--out", default="out/scenario.usdc", help="the stage to write: .usdc, .usda or .usd")
     return parser
 
 
@@ -155,26 +171,26 @@ def main(argv: list[str] | None = None) -> int:
     if args.usda and out.endswith(".usdc"):
         out = out[: -len(".usdc")] + ".usda"
     try:
+        # Before anything is made: a stage's extension, a folder that can be made. The folder itself is made
+        # by the recorder, which removes it again if the export fails.
+        check_stage_path("--out", out, True if args.usda else None)
         config = ExportConfig(**scenario_arguments(args), duration=args.duration, controller=args.controller,
                               actions=args.actions, policy=getattr(args, "policy", None), loop_period=args.loop_period,
-                              instanced=args.instanced)
-        device = str(wp.get_device(args.device))
-        os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    except (ValueError, RuntimeError, OSError) as error:  # a bad setting; an unknown device; an unusable --out
-        print(f"ocean-warp export-usd: {error}", file=sys.stderr)
-        return 2
+                              instanced=args.instanced, time_codes_per_second=args.playback_fps)
+        device = resolve_device(args.device, name="--device")
+    except (ValueError, OSError) as error:  # a bad setting; an unknown device; an unusable --out
+        return report_error(PROG, str(error))
     started = time.perf_counter()
     try:
         files = export_scenario(config, out, device=device, ascii=True if args.usda else None,
                                 progress=not args.no_progress)
     except (ValueError, CheckpointError) as error:
-        print(f"ocean-warp export-usd: {error}", file=sys.stderr)
-        return 2
+        return report_error(PROG, str(error))
     except OSError as error:  # the stage could not be written
-        print(f"ocean-warp export-usd: {error}", file=sys.stderr)
+        print(f"{PROG}: {error}", file=sys.stderr)
         return 1
     seconds = time.perf_counter() - started
-    print(f"{config.boats} boats x {config.duration:g} s ({config.controller}) recorded in {seconds:.1f} s")
+    print(f"{plural(config.boats, 'boat')} x {config.duration:g} s ({config.controller}) recorded in {seconds:.1f} s")
     for name, path in files.items():
         print(f"wrote {path} ({name}, {os.path.getsize(path) / 2**20:.1f} MiB)")
     return 0

@@ -28,7 +28,10 @@ def main(argv=None) -> None:
     args, rest = parser.parse_known_args(argv[:1])
     import warp as wp
 
+    from .devices import init_warp
+
     wp.config.log_level = wp.LOG_WARNING  # Warp's banner and module-load lines would bury the summary
+    init_warp()  # without the no-driver warning Warp would print on a machine without a GPU
     module_name = JOBS[args.job][0]
     module = __import__(module_name, fromlist=["main"])
     try:

@@ -32,12 +32,21 @@ def test_tiny_demo_writes_stage_pictures_and_table(tmp_path):
     runs = _rows(result.files["runs.csv"])
     assert [row["controller"] for row in runs] == ["policy"] * 3 + ["autopilot"] * 2
     assert all(row["end"] == "time-out" for row in runs)  # 6 s is far too short for the mission
+    # the autopilot's own tack and gybe counts fill its rows (the policy keeps none: empty)
+    for key in ("own_tacks", "own_gybes"):
+        assert [row[key] for row in runs[:3]] == [""] * 3 and all(row[key].isdigit() for row in runs[3:]), key
     # 5 boats x 6 decisions of 1 s each
     assert result.simulated_boat_seconds == pytest.approx(30.0)
     stage = Usd.Stage.Open(result.files["stage"])
     assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
-    assert stage.GetTimeCodesPerSecond() == 2.0
-    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode()) == (1.0, 12.0)  # frames at 0.5 s ... 6 s
+    # 2 frames a simulated second, at 24 time codes a second (so the stage plays in real time in Blender)
+    assert stage.GetTimeCodesPerSecond() == stage.GetFramesPerSecond() == 24.0
+    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode()) == (12.0, 144.0)  # frames at 0.5 s ... 6 s
+    # The mission BCDACA starts at A: the drawn route does too.
+    route = np.array(UsdGeom.BasisCurves.Get(stage, "/World/Route/Path").GetPointsAttr().Get())[:, :2]
+    np.testing.assert_allclose(route - route[0], np.array([[0.0, 0.0], [70.71, -70.71], [141.42, 0.0],
+                                                           [70.71, 70.71], [0.0, 0.0], [141.42, 0.0], [0.0, 0.0]]),
+                               atol=1e-3)
     assert stage.GetPrimAtPath(FLEET).GetAttribute("oceanWarp:boatCount").Get() == 5
     assert validate_stage(result.files["stage"]) == []
     # Each boat sailed by the controller its row names: a fleet of one controller, on the same water with
@@ -47,7 +56,7 @@ def test_tiny_demo_writes_stage_pictures_and_table(tmp_path):
                          out=tmp_path / name, progress=False)
         reference = _rows(alone.files["runs.csv"])[boats]
         mixed = [row for row in runs if row["controller"] == name]
-        for key in ("distance_m", "motor_use", "start_heading_deg"):
+        for key in ("distance_m", "motor_use", "start_heading_deg", "own_tacks", "own_gybes"):
             assert [row[key] for row in mixed] == [row[key] for row in reference], key
     policy_distance = [float(row["distance_m"]) for row in runs[:3]]
     assert policy_distance != [float(row["distance_m"]) for row in _rows(alone.files["runs.csv"])[:3]]
@@ -62,10 +71,12 @@ def test_export_usd_fixed_commands_move_the_boats_as_commanded(tmp_path):
     stage = Usd.Stage.Open(files["stage"])
     boats = [prim for prim in stage.GetPrimAtPath(FLEET).GetChildren() if prim.GetName().startswith("Boat_")]
     assert len(boats) == 3
+    # Frames at 1 s ... 8 s, at 24 time codes per second.
+    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode(), stage.GetTimeCodesPerSecond()) == (24.0, 192.0, 24.0)
     for prim in boats:
         xform = UsdGeom.Xformable(prim)
-        start = np.array(xform.ComputeLocalToWorldTransform(1.0).ExtractTranslation())
-        end = np.array(xform.ComputeLocalToWorldTransform(8.0).ExtractTranslation())
+        start = np.array(xform.ComputeLocalToWorldTransform(24.0).ExtractTranslation())
+        end = np.array(xform.ComputeLocalToWorldTransform(192.0).ExtractTranslation())
         assert np.linalg.norm(end[:2] - start[:2]) > 3.0
 
 

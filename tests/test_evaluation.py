@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import datetime
 import math
 
 import numpy as np
@@ -162,6 +163,10 @@ def test_cross_track_spread_by_hand():
     assert mean == pytest.approx((d * math.sqrt(2.0 / 3.0) + d) / 2.0)
     per_leg, mean = cross_track_spread([run1, run4], [reached[0], reached[3]], route, start)
     assert np.all(np.isnan(per_leg)) and math.isnan(mean)  # a leg needs two runs that completed it
+    # a first waypoint where the runs start: that leg has no track (no spread), the next one counts as before
+    per_leg, mean = cross_track_spread([run1, run2], [r + 1 for r in reached[:2]], [start] + route, start)
+    assert math.isnan(per_leg[0]) and mean == pytest.approx(d)
+    np.testing.assert_allclose(per_leg[1:], [d, d])
 
 
 # --- a tiny evaluation: 2 runs of 20 s, a random policy and the autopilot, on the CPU ----------------
@@ -319,8 +324,27 @@ def test_fleet_controller_gives_each_run_its_controllers_actions(tmp_path):
     for a, b in zip(mine.paths, theirs.paths):
         np.testing.assert_allclose(a.xy, b.xy, rtol=0, atol=1e-4)
     np.testing.assert_array_equal(mine.time_s, theirs.time_s)
+    # the autopilot's own tack and gybe counters reach its runs' rows, and only those (the policy keeps none)
+    autopilot = sail_mission(SailingEnv(task, 4, device="cpu", seed=3), AutopilotController()).subset(~mask, "a")
+    assert mine.own_tacks is None and mine.run_rows()[0]["own_tacks"] == ""
+    theirs = result.subset(~mask, "autopilot")
+    for key in ("own_tacks", "own_gybes"):
+        np.testing.assert_array_equal(getattr(theirs, key), getattr(autopilot, key))
+    assert [row["own_tacks"] for row in theirs.run_rows()] == [int(v) for v in autopilot.own_tacks]
     with pytest.raises(ValueError, match="exactly one controller"):
         FleetController([(PolicyController(policy), mask), (AutopilotController(), mask)])
+
+
+def test_progress_bar_ends_full_when_every_run_ends_early(capsys):
+    """Every run reaches its one waypoint (where it starts) long before the 20-decision limit: the bar ends at
+    100 % of the decisions sailed, not part-way (the demo's stopped at 42 % when every boat was done)."""
+    task = tiny_mission(route=((3.0, 0.0),), reach_radius=10.0, episode_time=20.0)
+    result = sail_mission(SailingEnv(task, 2, device="cpu", seed=1), AutopilotController(), progress=True)
+    sailed = max(len(path.propeller) for path in result.paths)
+    assert result.success.all() and sailed < 20
+    renders = capsys.readouterr().err.replace("\n", "\r").split("\r")
+    last = [text for text in renders if "decision" in text][-1]
+    assert "100%" in last and f"{sailed}/{sailed}" in last and "ended 2/2" in last, last
 
 
 # --- the command line --------------------------------------------------------------------------------
@@ -337,7 +361,7 @@ def test_cli_help(capsys):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["--runs", "0"], "--runs must be >= 1"),
+    (["--runs", "0"], "--runs must be a whole number >= 1, got 0"),
     (["--sea-state", "-0.1"], "--sea-state must be"),
     (["--wind", "-1"], "--wind must be"),
     (["--wind", "nan"], "--wind must be"),
@@ -349,20 +373,47 @@ def test_cli_bad_options(argv, message, capsys):
     with pytest.raises(SystemExit) as exit_info:
         main(argv)
     assert exit_info.value.code == 2
-    assert message in capsys.readouterr().err
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("ocean-warp eval: error: ") and message in err[0], err
+
+
+def unusable_checkpoints(folder) -> dict[str, str]:
+    """Files that are not ocean_warp policies, each with what its one-line error must say: a text file, random
+    bytes, a zip with random contents, a truncated policy, a pickled object of another kind, a foreign torch
+    file, a folder, and a missing file (random contents seeded)."""
+    rng = np.random.default_rng(20)
+    (folder / "notes.txt").write_text("policy: the shipped one, please\nnot a checkpoint\n")
+    (folder / "random.pt").write_bytes(rng.bytes(4096))
+    (folder / "zip_garbage.pt").write_bytes(b"PK\x03\x04" + rng.bytes(4096))
+    random_policy_file(folder / "good.pt")
+    data = (folder / "good.pt").read_bytes()
+    (folder / "truncated.pt").write_bytes(data[: len(data) // 2])
+    torch.save({"format": "ocean_warp.policy/1", "when": datetime.date(2026, 11, 23)}, folder / "code.pt")
+    torch.save({"weights": torch.zeros(3)}, folder / "foreign.pt")
+    (folder / "a_folder.pt").mkdir()
+    not_ours = "is not an ocean_warp policy checkpoint"
+    return {"notes.txt": f"{not_ours}: not a file written by torch.save",
+            "random.pt": f"{not_ours}: not a file written by torch.save",
+            "zip_garbage.pt": f"{not_ours}: it could not be read as a torch file",
+            "truncated.pt": f"{not_ours}: it could not be read as a torch file",
+            "code.pt": f"{not_ours}: it holds datetime.date, not only tensors and plain data",
+            "foreign.pt": f"{not_ours} (no 'format' key",
+            "a_folder.pt": "is a folder, not an ocean_warp policy checkpoint file",
+            "missing.pt": "no such file"}
 
 
 def test_cli_unusable_policy(tmp_path, capsys):
-    """A missing, a corrupt and a foreign checkpoint: one line of error, no traceback, exit status 2."""
-    (tmp_path / "corrupt.pt").write_bytes(b"not a torch file")
-    torch.save({"weights": torch.zeros(3)}, tmp_path / "foreign.pt")
-    for name, message in (("missing.pt", "no such file"), ("corrupt.pt", "could not be read"),
-                          ("foreign.pt", "not an ocean_warp policy checkpoint")):
+    """Anything but an ocean_warp policy: one line naming the file and saying so, exit status 2, no traceback,
+    never torch's advice to load unsafely (weights_only=False), nothing written."""
+    for name, message in unusable_checkpoints(tmp_path).items():
         with pytest.raises(SystemExit) as exit_info:
             main(["--policy", str(tmp_path / name), "--out", str(tmp_path / "out")])
         assert exit_info.value.code == 2
-        err = capsys.readouterr().err
-        assert message in err and "Traceback" not in err
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1, (name, err)
+        assert err[0].startswith(f"ocean-warp eval: error: checkpoint {str(tmp_path / name)!r}"), (name, err)
+        assert message in err[0], (name, err)
+        assert "weights_only" not in err[0] and "safe_globals" not in err[0]
     assert not (tmp_path / "out").exists()
 
 
@@ -374,6 +425,7 @@ def test_cli_runs_the_mission(tmp_path, capsys):
     assert code == 0
     out = capsys.readouterr().out
     assert "completion_rate" in out and "wrote" in out
+    assert "1 run per controller" in out and "1 runs" not in out
     for name in ("results.csv", "runs.csv", "trajectories.npz", "trajectories.png"):
         assert (tmp_path / "out" / name).is_file()
     _, rows = read_csv(tmp_path / "out" / "runs.csv")

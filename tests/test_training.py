@@ -138,8 +138,9 @@ def test_bad_checkpoints_give_clear_errors(tmp_path):
         load_policy(foreign)
     code = tmp_path / "code.pt"
     torch.save({"format": "ocean_warp.policy/1", "made": datetime.date(2026, 11, 23)}, code)  # not plain data
-    with pytest.raises(CheckpointError, match="could not be read"):
+    with pytest.raises(CheckpointError, match="holds datetime.date, not only tensors") as error:
         load_policy(code)
+    assert "weights_only" not in str(error.value)
     misfit = _policy_checkpoint(tmp_path / "misfit.pt", num_obs=15)
     with pytest.raises(CheckpointError, match="do not fit"):
         load_policy(misfit)
@@ -152,11 +153,30 @@ def test_bad_checkpoints_give_clear_errors(tmp_path):
 
 
 def test_train_command_reports_a_bad_resume_without_a_traceback(tmp_path, capsys):
-    bad = tmp_path / "bad.pt"
-    bad.write_bytes(b"not a checkpoint at all")
-    assert main(["--resume", str(bad), "--no-progress"]) == 2
-    err = capsys.readouterr().err
-    assert "could not be read" in err and "Traceback" not in err
+    """--resume with anything but an ocean_warp checkpoint: one line naming the file and saying it is not one,
+    exit status 2, never torch's advice to load unsafely, no run folder."""
+    from tests.test_evaluation import unusable_checkpoints
+
+    for name, message in unusable_checkpoints(tmp_path).items():
+        path = str(tmp_path / name)
+        assert main(["--resume", path, "--no-progress", "--runs-root", str(tmp_path / "runs")]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith(f"ocean-warp train: error: checkpoint {path!r}"), (name, err)
+        assert message in err[0] and "weights_only" not in err[0], (name, err)
+    assert not (tmp_path / "runs").exists()
+
+
+def test_train_command_checks_its_numbers_first(tmp_path, capsys):
+    """--num-envs 0 says that --num-envs must be positive (it once said --workers must be at most num_envs);
+    train() says the same of num_envs."""
+    for argv, message in ((["--num-envs", "0"], "--num-envs must be a whole number >= 1, got 0"),
+                          (["--num-envs", "4", "--workers", "0"], "--workers must be a whole number >= 1, got 0"),
+                          (["--minutes", "-1"], "--minutes must be a number > 0, got -1.0")):
+        assert main(argv + ["--no-progress", "--runs-root", str(tmp_path)]) == 2
+        assert capsys.readouterr().err.strip().splitlines() == [f"ocean-warp train: error: {message}"]
+    with pytest.raises(ValueError, match=r"^num_envs must be a whole number >= 1, got 0$"):
+        train(agent_config("EBoatWaypoint-v0"), num_envs=0, progress=False, runs_root=str(tmp_path))
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_overrides_reach_nested_fields_and_are_validated():
@@ -221,3 +241,21 @@ def test_cli_help(job):
     for option in ("--task", "--device", "--num-envs", "--iterations", "--minutes", "--seed", "--run-name",
                    "--resume"):
         assert option in result.stdout
+
+
+def test_multi_gpu_benchmark_table_without_a_one_gpu_run():
+    """``benchmarks/multi_gpu_bench.py --gpus 2`` alone has no one-GPU baseline: speed-up and efficiency read
+    "n/a" (they once read "nanx" and "nan%"); with one, they are against it."""
+    from benchmarks.multi_gpu_bench import format_table
+
+    def row(gpus, rate):
+        return {"gpus": gpus, "iterations": 10, "samples": 2e6, "collect_decisions_per_s": rate,
+                "loop_decisions_per_s": rate / 2, "command_s": 60.0, "capable_iteration": None, "final_completed": 3}
+
+    settings = dict(num_envs=4096, minutes=1.0, runs=20, threshold=20, evaluated=True, device_name="GPU")
+    alone = format_table([row(2, 3.0e5)], **settings)
+    assert "nan" not in alone.lower() and "| 300,000 | n/a | n/a |" in alone
+    assert "no one-GPU run" in alone
+    both = format_table([row(1, 2.0e5), row(2, 3.6e5)], **settings)
+    assert "| 200,000 | 1.00x | 100% |" in both and "| 360,000 | 1.80x | 90% |" in both
+    assert "n/a" not in both and "nan" not in both.lower()

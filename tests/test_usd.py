@@ -21,6 +21,7 @@ from ocean_warp.usd import StageRecorder, record_eboat, render_preview, validate
 
 FPS = 5.0
 EVERY = 4  # record every 4th step of dt 0.05 s: 5 frames per second of simulated time
+TCPS = 24.0  # the stages' default time codes per second: time code = time [s] x 24, Blender's frame rate
 BOOM_PIVOT = np.array([MAST_STEP[0], 0.0, BOOM_HEIGHT])
 RUDDER_PIVOT = np.array([-1.086, 0.0, HULL_LINK_HEIGHT + 0.076])  # sheet: rudder joint in the hull link frame
 INSTANCERS = {"Body": "Bodies", "Boom": "Booms", "Rudder": "Rudders"}
@@ -70,7 +71,7 @@ def assert_rig_matches(stage, frame):
     """Body, boom and rudder of every boat where the simulator had them: body at the boat's pose, boom and
     rudder turning about their pivots with the sailing rig's conventions (boom and rudder chord along
     (-cos a, sin a, 0) in the body frame)."""
-    code = frame["time"] * FPS
+    code = frame["time"] * TCPS
     rotation = Rotation.from_quat(frame["orientation"])  # scipy and Warp: (x, y, z, w)
     matrix = rotation.as_matrix()
     bodies = part_transforms(stage, code, "Body")
@@ -94,9 +95,9 @@ def test_recorded_stage_matches_the_simulation(device, tmp_path, instanced):
     stage = Usd.Stage.Open(path)
     assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
     assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
-    assert stage.GetTimeCodesPerSecond() == FPS
+    assert stage.GetTimeCodesPerSecond() == stage.GetFramesPerSecond() == TCPS
     assert stage.GetStartTimeCode() == 0.0
-    assert stage.GetEndTimeCode() == pytest.approx(truth[-1]["time"] * FPS)
+    assert stage.GetEndTimeCode() == pytest.approx(truth[-1]["time"] * TCPS)
     assert truth[-1]["time"] == pytest.approx((len(truth) - 1) * EVERY * 0.05)
     assert stage.GetPrimAtPath("/World/Fleet").GetAttribute("oceanWarp:boatCount").Get() == 3
     assert any(abs(b) > 0.05 for b in truth[-1]["boom"]), "the booms should have swung"
@@ -106,7 +107,7 @@ def test_recorded_stage_matches_the_simulation(device, tmp_path, instanced):
     ocean = ow.Ocean(sim.ocean.config, device=device)
     mesh = UsdGeom.Mesh.Get(stage, "/World/Ocean")
     for frame in (truth[0], truth[-1]):
-        points = np.array(mesh.GetPointsAttr().Get(frame["time"] * FPS), dtype=np.float64)
+        points = np.array(mesh.GetPointsAttr().Get(frame["time"] * TCPS), dtype=np.float64)
         ocean.update(frame["time"])
         chosen = np.linspace(0, len(points) - 1, 50).astype(int)
         np.testing.assert_allclose(ocean.sample(points[chosen, :2]).height, points[chosen, 2], atol=2e-4)
@@ -130,7 +131,7 @@ def test_stage_validates_with_every_option(tmp_path):
     text = path.read_text()
     assert text.startswith("#usda")
     stage = Usd.Stage.Open(str(path))
-    normals = np.array(UsdGeom.Mesh.Get(stage, "/World/Ocean").GetNormalsAttr().Get(1.0))
+    normals = np.array(UsdGeom.Mesh.Get(stage, "/World/Ocean").GetNormalsAttr().Get(0.1 * TCPS))  # the frame at 0.1 s
     np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-5)
     assert normals[:, 2].min() > 0.5
     buoys = stage.GetPrimAtPath("/World/Route/Waypoints").GetChildren()
@@ -188,22 +189,25 @@ def test_ocean_loop_stage_joins_its_ends(device, tmp_path):
     ocean = ow.Ocean(small_sea(loop_period=6.0), device=device)
     path = write_ocean_loop(tmp_path / "loop.usdc", ocean, fps=10.0, resolution=33)
     stage = Usd.Stage.Open(path)
-    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode(), stage.GetTimeCodesPerSecond()) == (0.0, 60.0, 10.0)
+    # 6 s at 24 time codes per second (plays in real time at 24 fps), sampled 10 times a second.
+    assert (stage.GetStartTimeCode(), stage.GetEndTimeCode(), stage.GetTimeCodesPerSecond()) == (0.0, 144.0, 24.0)
+    assert stage.GetFramesPerSecond() == 24.0
     points = UsdGeom.Mesh.Get(stage, "/World/Ocean").GetPointsAttr()
-    assert len(points.GetTimeSamples()) == 61
-    first, last = np.array(points.Get(0.0)), np.array(points.Get(60.0))
+    codes = points.GetTimeSamples()
+    np.testing.assert_allclose(codes, np.arange(61) * 2.4)
+    first, last = np.array(points.Get(0.0)), np.array(points.Get(144.0))
     np.testing.assert_allclose(last, first, atol=1e-5)
     # The seam: replayed in a loop, the step from the last frame back to the first is an ordinary 0.1 s
     # step of the waves, not a jump (unquantised frequencies would jump by a random phase there).
-    frames = np.array([points.Get(float(code)) for code in range(61)], dtype=np.float64)
+    frames = np.array([points.Get(code) for code in codes], dtype=np.float64)
     steps = np.abs(np.diff(frames[..., 2], axis=0)).max(axis=1)
     assert steps[-1] <= 1.5 * steps[:-1].max()
     assert steps[-1] >= 0.5 * steps[:-1].min() > 0.0
     assert len(first) == 33 * 33
-    middle = np.array(points.Get(23.0), dtype=np.float64)
+    middle = np.array(points.Get(codes[23]), dtype=np.float64)
     assert np.abs(middle - first).max() > 0.05
     fresh = ow.Ocean(ocean.config, device=device)
-    fresh.update(2.3)
+    fresh.update(codes[23] / 24.0)  # 2.3 s
     np.testing.assert_allclose(fresh.sample(middle[::37, :2]).height, middle[::37, 2], atol=2e-4)
     assert validate_stage(path) == []
 
@@ -217,12 +221,22 @@ def test_recorded_ocean_loop_repeats_under_the_boats(device, tmp_path):
     stage = Usd.Stage.Open(path)
     mesh = UsdGeom.Mesh.Get(stage, "/World/Ocean")
     fresh = ow.Ocean(sim.ocean.config, device=device)
-    for code in (3.0, 23.0, 27.0):  # 0.6 s, 4.6 s (the second loop) and 5.4 s
-        points = np.array(mesh.GetPointsAttr().Get(code), dtype=np.float64)
-        fresh.update(code / FPS)
+    for seconds in (0.6, 4.6, 5.4):  # 4.6 s: in the second loop
+        points = np.array(mesh.GetPointsAttr().Get(seconds * TCPS), dtype=np.float64)
+        fresh.update(seconds)
         np.testing.assert_allclose(fresh.sample(points[::41, :2]).height, points[::41, 2], atol=2e-4)
-    np.testing.assert_allclose(np.array(mesh.GetPointsAttr().Get(23.0)), np.array(mesh.GetPointsAttr().Get(3.0)),
-                               atol=1e-5)
+    np.testing.assert_allclose(np.array(mesh.GetPointsAttr().Get(4.6 * TCPS)),
+                               np.array(mesh.GetPointsAttr().Get(0.6 * TCPS)), atol=1e-5)
+    # Outside the clips (the default time, for readers that ask there) the ocean still has its shape, the
+    # first frame's surface; the clips win at every time code.
+    for name in ("points", "extent"):
+        attribute = mesh.GetPrim().GetAttribute(name)
+        fallback = attribute.Get()
+        assert fallback is not None and len(fallback) > 0, name
+        np.testing.assert_allclose(np.array(fallback), np.array(attribute.Get(truth[0]["time"] * TCPS)), atol=1e-6)
+    assert np.abs(np.array(mesh.GetPointsAttr().Get()) - np.array(mesh.GetPointsAttr().Get(0.6 * TCPS))).max() > 0.01
+    colors = UsdGeom.PrimvarsAPI(mesh).GetPrimvar("displayColor")
+    assert colors.GetInterpolation() == UsdGeom.Tokens.vertex and len(colors.Get()) == len(mesh.GetPointsAttr().Get())
     assert_rig_matches(stage, truth[-1])
     assert validate_stage(path) == []
 
@@ -264,6 +278,10 @@ def test_ocean_lattice_covers_its_extent_on_grid_nodes(resolution, xs, ys):
 
 @pytest.mark.parametrize("arguments,name", [
     (dict(fps=0.0), "fps"),
+    (dict(fps=10.0, time_codes_per_second=0.0), "time_codes_per_second"),
+    (dict(fps=10.0, time_codes_per_second=math.inf), "time_codes_per_second"),
+    (dict(fps=10.0, route_start=[0.0, 0.0]), "route_start"),
+    (dict(fps=10.0, route=[[0.0, 0.0], [1.0, 2.0]], route_start=[0.0, math.nan]), "route_start"),
     (dict(fps=10.0, ocean_resolution=1), "ocean_resolution"),
     (dict(fps=10.0, ocean_extent=(0.0, -5.0, 0.0, 10.0)), "ocean_extent"),
     (dict(fps=10.0, boats=-2), "boats"),
@@ -308,3 +326,273 @@ def test_preview_png_is_written(tmp_path):
         assert handle.read(8) == b"\x89PNG\r\n\x1a\n"
     assert os.path.getsize(png) > 20_000
     assert sorted(os.listdir(tmp_path)) == ["run.png", "run.usdc"]
+
+
+# --- issue 20: what a viewer or an importer sees -------------------------------------------------------------
+
+MISSION = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}  # the seed paper's
+
+
+def _bound_surface(prim):
+    """The UsdPreviewSurface shader of the material bound to ``prim`` (None when nothing is bound)."""
+    from pxr import UsdShade
+
+    material, _ = UsdShade.MaterialBindingAPI(prim).ComputeBoundMaterial()
+    if not material:
+        return None
+    source = material.GetSurfaceOutput().GetConnectedSources()[0][0].source
+    shader = UsdShade.Shader(source.GetPrim())
+    assert shader.GetIdAttr().Get() == "UsdPreviewSurface"
+    return shader
+
+
+def _display_color(prim):
+    return tuple(UsdGeom.PrimvarsAPI(prim).GetPrimvar("displayColor").Get()[0])
+
+
+def test_route_path_starts_at_the_start_and_buoys_are_solid(tmp_path):
+    """BCDACA from A: the path is A B C D A C A (its first leg A-B included); one buoy per place, a mesh of
+    the given size standing where the waypoint is, with a material."""
+    from ocean_warp.envs.tasks import BCDACA_ROUTE
+
+    path = tmp_path / "route.usda"
+    with StageRecorder(path, fps=1.0, route=BCDACA_ROUTE, route_labels="BCDACA", route_start=(0.0, 0.0)):
+        pass
+    stage = Usd.Stage.Open(str(path))
+    drawn = np.array(UsdGeom.BasisCurves.Get(stage, "/World/Route/Path").GetPointsAttr().Get())
+    np.testing.assert_allclose(drawn[:, :2], [MISSION[name] for name in "ABCDACA"], atol=1e-4)
+    assert np.all(np.abs(drawn[:, 2]) < 0.2)
+    buoys = stage.GetPrimAtPath("/World/Route/Waypoints").GetChildren()
+    assert [b.GetDisplayName() for b in buoys] == ["B", "C", "D", "A"]
+    cache = UsdGeom.BBoxCache(Usd.TimeCode.Default(), [UsdGeom.Tokens.default_])
+    for buoy in buoys:
+        solids = [p for p in Usd.PrimRange(buoy) if p.IsA(UsdGeom.Gprim)]
+        assert len(solids) == 1 and solids[0].IsA(UsdGeom.Mesh)
+        assert solids[0].GetName() == f"Buoy_{buoy.GetDisplayName()}"
+        assert UsdGeom.Imageable(solids[0]).ComputeVisibility() == UsdGeom.Tokens.inherited
+        box = cache.ComputeWorldBound(solids[0]).ComputeAlignedRange()
+        low, high = np.array(box.GetMin()), np.array(box.GetMax())
+        np.testing.assert_allclose(0.5 * (low + high)[:2], MISSION[buoy.GetDisplayName()], atol=1e-4)
+        np.testing.assert_allclose(high - low, [1.0, 1.0, 2.0], atol=0.02)  # 0.5 m radius, 2 m tall
+        np.testing.assert_allclose([low[2], high[2]], [-2.0 / 3.0, 4.0 / 3.0], atol=1e-4)  # a third below water
+        surface = _bound_surface(solids[0])
+        assert tuple(surface.GetInput("diffuseColor").Get()) == pytest.approx(_display_color(solids[0]))
+    # A start away from every waypoint gets a buoy of its own, and the path leaves from it.
+    path = tmp_path / "elsewhere.usda"
+    with StageRecorder(path, fps=1.0, route=[[10.0, 0.0], [20.0, 5.0]], route_start=(-5.0, -5.0)):
+        pass
+    stage = Usd.Stage.Open(str(path))
+    drawn = np.array(UsdGeom.BasisCurves.Get(stage, "/World/Route/Path").GetPointsAttr().Get())
+    np.testing.assert_allclose(drawn[:, :2], [[-5.0, -5.0], [10.0, 0.0], [20.0, 5.0]], atol=1e-5)
+    buoys = stage.GetPrimAtPath("/World/Route/Waypoints").GetChildren()
+    assert [b.GetDisplayName() for b in buoys] == ["0", "1", "start"]
+
+
+@pytest.mark.parametrize("instanced,colors", [(False, True), (True, False)], ids=["prims_colored", "instanced_plain"])
+def test_every_visible_part_has_a_preview_surface(tmp_path, instanced, colors):
+    from pxr import UsdShade
+
+    ocean = ow.Ocean(small_sea(), device="cpu")
+    path = tmp_path / "looks.usda"
+    with StageRecorder(path, fps=2.0, ocean=ocean, ocean_resolution=8, ocean_colors=colors, boats=3,
+                       instanced=instanced, route=[[0.0, 0.0], [20.0, 5.0]], wind_direction=1.0) as recorder:
+        recorder.record(0.0, [[0, 0, 0], [5, 5, 0], [9, 0, 0]], [[0, 0, 0, 1]] * 3)
+    assert validate_stage(path) == []
+    stage = Usd.Stage.Open(str(path))
+    gprims = [p for p in Usd.PrimRange(stage.GetPrimAtPath("/World"), Usd.TraverseInstanceProxies())
+              if p.IsA(UsdGeom.Gprim)]
+    names = {p.GetName().split("_")[0] for p in gprims}  # Buoy_0, Buoy_1: the buoys, named by their labels
+    assert {"Hull", "Keel", "Mast", "Spar", "Sail", "Blade", "Buoy", "Path", "Arrow", "Ocean"} <= names
+    hulls = []
+    for prim in gprims:
+        surface = _bound_surface(prim)
+        assert surface is not None, f"{prim.GetPath()} has no material"
+        diffuse = surface.GetInput("diffuseColor")
+        if prim.GetName() == "Ocean":
+            continue
+        assert not diffuse.HasConnectedSource()
+        # The material shows the colour the prim displays without one.
+        assert tuple(diffuse.Get()) == pytest.approx(_display_color(prim), abs=1e-6), prim.GetPath()
+        if prim.GetName() == "Hull":
+            hulls.append(tuple(diffuse.Get()))
+    ocean_surface = _bound_surface(stage.GetPrimAtPath("/World/Ocean"))
+    diffuse = ocean_surface.GetInput("diffuseColor")
+    if colors:
+        # The ocean's colours by height come through a primvar reader of the mesh's per-vertex displayColor.
+        reader = UsdShade.Shader(diffuse.GetConnectedSources()[0][0].source.GetPrim())
+        assert reader.GetIdAttr().Get() == "UsdPrimvarReader_float3"
+        assert reader.GetInput("varname").Get() == "displayColor"
+        primvar = UsdGeom.PrimvarsAPI(stage.GetPrimAtPath("/World/Ocean")).GetPrimvar("displayColor")
+        assert primvar.GetInterpolation() == UsdGeom.Tokens.vertex
+        assert len(primvar.Get(0.0)) == len(UsdGeom.Mesh.Get(stage, "/World/Ocean").GetPointsAttr().Get(0.0))
+    else:
+        assert not diffuse.HasConnectedSource()
+        red, green, blue = diffuse.Get()
+        assert blue > red and blue > 0.3  # a sea colour
+    if instanced:
+        assert len(hulls) == 1  # one prototype, drawn by the instancer
+    else:
+        assert len(hulls) == 3 and len(set(hulls)) == 3  # each boat its own hull colour
+
+
+@pytest.mark.parametrize("rate", [None, 30.0, 12.5])
+def test_stage_plays_in_real_time(tmp_path, rate):
+    """Frames recorded 4 times a second; the stage's time codes per second (default 24) are its frames
+    per second too, and the sample of time t [s] sits at time code t x rate: one second of simulation is
+    one second of playback, in the stage and in its ocean loop."""
+    expected = 24.0 if rate is None else rate
+    options = {} if rate is None else dict(time_codes_per_second=rate)
+    ocean = ow.Ocean(small_sea(loop_period=2.0), device="cpu")
+    times = [0.25, 0.5, 0.75, 1.0, 1.25]
+    positions = [np.array([[2.0 * t, -t, 0.0]]) for t in times]
+    path = tmp_path / "rate.usdc"
+    with StageRecorder(path, fps=4.0, ocean=ocean, ocean_loop=True, ocean_resolution=8, boats=1, instanced=False,
+                       **options) as recorder:
+        for t, where in zip(times, positions):
+            recorder.record(t, where, [[0, 0, 0, 1]])
+    stage = Usd.Stage.Open(str(path))
+    assert stage.GetTimeCodesPerSecond() == stage.GetFramesPerSecond() == expected
+    span = (stage.GetEndTimeCode() - stage.GetStartTimeCode()) / stage.GetFramesPerSecond()
+    assert span == pytest.approx(times[-1] - times[0])
+    translate = stage.GetPrimAtPath("/World/Fleet/Boat_0000").GetAttribute("xformOp:translate")
+    np.testing.assert_allclose(translate.GetTimeSamples(), np.array(times) * expected)
+    for t, where in zip(times, positions):
+        np.testing.assert_allclose(np.array(translate.Get(t * expected)), where[0], atol=1e-9)
+    loop = Usd.Stage.Open(str(tmp_path / "rate_ocean_loop.usdc"))
+    assert loop.GetTimeCodesPerSecond() == expected
+    assert loop.GetEndTimeCode() == pytest.approx(2.0 * expected)  # the 2 s loop
+    # The ocean shown at t is the ocean at t.
+    mesh = UsdGeom.Mesh.Get(stage, "/World/Ocean")
+    fresh = ow.Ocean(ocean.config, device="cpu")
+    points = np.array(mesh.GetPointsAttr().Get(0.75 * expected), dtype=np.float64)
+    fresh.update(0.75)
+    np.testing.assert_allclose(fresh.sample(points[::7, :2]).height, points[::7, 2], atol=2e-4)
+    assert validate_stage(path) == []
+
+
+@pytest.mark.parametrize("instanced", [False, True], ids=["prim_per_boat", "instanced"])
+def test_model_hierarchy_kinds(tmp_path, instanced):
+    from pxr import Kind
+
+    path = tmp_path / "kinds.usda"
+    with StageRecorder(path, fps=2.0, boats=2, instanced=instanced, route=[[0, 0], [5, 5]],
+                       wind_direction=0.0) as recorder:
+        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+    stage = Usd.Stage.Open(str(path))
+
+    def kind(where):
+        return Usd.ModelAPI(stage.GetPrimAtPath(where)).GetKind()
+
+    assert kind("/World") == Kind.Tokens.group and stage.GetPrimAtPath("/World").IsGroup()
+    fleet = stage.GetPrimAtPath("/World/Fleet")
+    assert kind("/World/Fleet") == Kind.Tokens.assembly and fleet.IsGroup() and fleet.IsModel()
+    if not instanced:
+        for boat in ("/World/Fleet/Boat_0000", "/World/Fleet/Boat_0001"):
+            prim = stage.GetPrimAtPath(boat)
+            assert kind(boat) == Kind.Tokens.component and prim.IsModel() and not prim.IsGroup()
+            assert not any(Usd.ModelAPI(p).GetKind() for p in Usd.PrimRange(prim) if p != prim)
+    for where in ("/World/Route", "/World/Wind"):
+        assert stage.GetPrimAtPath(where).IsModel()
+    assert validate_stage(path) == []
+    # The check can fail: a component below a prim of no kind is not a model.
+    broken = tmp_path / "broken.usda"
+    bad = Usd.Stage.CreateNew(str(broken))
+    UsdGeom.SetStageUpAxis(bad, UsdGeom.Tokens.z)
+    UsdGeom.SetStageMetersPerUnit(bad, 1.0)
+    root = UsdGeom.Xform.Define(bad, "/World").GetPrim()
+    Usd.ModelAPI(root).SetKind(Kind.Tokens.group)
+    bad.SetDefaultPrim(root)
+    UsdGeom.Xform.Define(bad, "/World/Loose")
+    Usd.ModelAPI(UsdGeom.Xform.Define(bad, "/World/Loose/Boat").GetPrim()).SetKind(Kind.Tokens.component)
+    bad.GetRootLayer().Save()
+    problems = validate_stage(broken)
+    assert len(problems) == 1 and "/World/Loose/Boat" in problems[0] and "component" in problems[0]
+
+
+def test_camera_frames_route_and_boats_and_the_sun_shines_down(tmp_path):
+    from pxr import Gf, UsdLux
+
+    route = np.array([[0.0, 0.0], [60.0, -40.0], [120.0, 10.0]])
+    boats = np.array([[-10.0, 5.0, 0.0], [130.0, 30.0, 0.0]])
+    path = tmp_path / "view.usdc"
+    with StageRecorder(path, fps=1.0, boats=2, route=route) as recorder:
+        recorder.record(0.0, boats, [[0, 0, 0, 1]] * 2)
+        recorder.record(1.0, boats + [0.0, -60.0, 0.0], [[0, 0, 0, 1]] * 2)  # where the camera must reach too
+    assert validate_stage(path) == []
+    stage = Usd.Stage.Open(str(path))
+    camera = UsdGeom.Camera.Get(stage, "/World/Camera")
+    assert camera
+    frustum = camera.GetCamera(Usd.TimeCode.Default()).frustum
+    for point in [*np.column_stack([route, np.zeros(3)]), *boats, *(boats + [0.0, -60.0, 0.0])]:
+        assert frustum.Intersects(Gf.Vec3d(*map(float, point))), point
+    assert not frustum.Intersects(Gf.Vec3d(1000.0, 1000.0, 0.0))
+    view = np.array(camera.ComputeLocalToWorldTransform(Usd.TimeCode.Default()))
+    looking = -view[2, :3]  # a camera looks along its -z axis
+    assert looking[2] < -0.3  # down at the water
+    sun = UsdLux.DistantLight.Get(stage, "/World/Lights/Sun")
+    light = np.array(sun.ComputeLocalToWorldTransform(Usd.TimeCode.Default()))
+    shining = -light[2, :3] / np.linalg.norm(light[2, :3])
+    assert shining[2] < -0.5 and sun.GetIntensityAttr().Get() > 0.0
+    assert UsdLux.DomeLight.Get(stage, "/World/Lights/Sky")
+
+
+def test_per_frame_ocean_has_its_first_frame_as_default(tmp_path):
+    ocean = ow.Ocean(small_sea(), device="cpu")
+    path = tmp_path / "frames.usdc"
+    with StageRecorder(path, fps=2.0, ocean=ocean, ocean_resolution=8, ocean_extent=(0.0, 10.0, 0.0, 10.0)) as rec:
+        for k in range(3):
+            rec.record(0.5 * (k + 1))
+    stage = Usd.Stage.Open(str(path))
+    points = UsdGeom.Mesh.Get(stage, "/World/Ocean").GetPointsAttr()
+    np.testing.assert_allclose(np.array(points.Get()), np.array(points.Get(12.0)))
+    assert np.abs(np.array(points.Get(36.0)) - np.array(points.Get(12.0))).max() > 0.01
+
+
+def test_export_usd_refuses_a_bad_out_before_making_anything(tmp_path, capsys, monkeypatch):
+    from ocean_warp.envs import usd_export
+
+    monkeypatch.chdir(tmp_path)
+    for out in ("x.txt", "new/folder/x.txt", "new/x.usdc.bak", "new/x"):
+        assert usd_export.main(["--controller", "fixed", "--out", out]) == 2
+        error = capsys.readouterr().err.strip().splitlines()
+        assert len(error) == 1 and error[0].startswith("ocean-warp export-usd: error: --out") and ".usd" in error[0], error
+        assert os.listdir(tmp_path) == [], out
+    assert usd_export._parser().parse_args(["--playback-fps", "30"]).playback_fps == 30.0
+    assert usd_export._parser().parse_args([]).playback_fps == 24.0
+    with pytest.raises(ValueError, match="time_codes_per_second"):
+        usd_export.ExportConfig(time_codes_per_second=-24.0)
+
+
+def test_failed_recording_removes_the_folders_it_made(tmp_path):
+    target = tmp_path / "made" / "for" / "it" / "run.usdc"
+    with pytest.raises(RuntimeError, match="stop"):
+        with StageRecorder(target, fps=2.0, boats=1) as recorder:
+            recorder.record(0.0, np.zeros((1, 3)), [[0, 0, 0, 1]])
+            raise RuntimeError("stop")
+    assert os.listdir(tmp_path) == []
+    # A folder that was there before stays, and so does anything else put in a folder it made.
+    (tmp_path / "kept").mkdir()
+    recorder = StageRecorder(tmp_path / "kept" / "new" / "run.usdc", fps=2.0)
+    (tmp_path / "kept" / "new" / "notes.txt").write_text("mine")
+    recorder.abort()
+    assert os.listdir(tmp_path / "kept" / "new") == ["notes.txt"]
+
+
+def test_crate_saved_while_recording_is_written_afresh_at_the_end(tmp_path, rng):
+    """Saving a crate file appends what changed; the finished stage holds the data once, as a fresh copy of
+    the same layer would, and nothing else is left in the folder."""
+    from pxr import Sdf
+
+    path = tmp_path / "long.usdc"
+    positions = rng.normal(size=(60, 2, 3))
+    with StageRecorder(path, fps=2.0, boats=2, instanced=False, save_every=5) as recorder:
+        for k, where in enumerate(positions):
+            recorder.record(0.5 * k, where, [[0, 0, 0, 1]] * 2, rng.normal(size=2), rng.normal(size=2))
+    assert os.listdir(tmp_path) == ["long.usdc"]
+    fresh = tmp_path / "fresh" / "copy.usdc"
+    fresh.parent.mkdir()
+    assert Sdf.Layer.FindOrOpen(str(path)).Export(str(fresh))
+    assert os.path.getsize(path) <= 1.02 * os.path.getsize(fresh)
+    stage = Usd.Stage.Open(str(path))
+    translate = stage.GetPrimAtPath("/World/Fleet/Boat_0001").GetAttribute("xformOp:translate")
+    np.testing.assert_allclose([translate.Get(0.5 * k * TCPS) for k in range(60)], positions[:, 1], atol=1e-12)

@@ -1,22 +1,31 @@
 """Example: a few dozen hulls of different shapes dropped into a JONSWAP sea; heave and roll over time.
 
-    python -m ocean_warp.examples.drop_hulls --out out/drop_hulls
+    ocean-warp drop-hulls --out out/drop_hulls    # or: python -m ocean_warp.examples.drop_hulls ...
 
 Writes ``hull_motions.png`` (heave and roll of every boat, coloured by shape) and ``hull_motions.csv``.
 """
 
 from __future__ import annotations
 
-import argparse
 import csv
 import logging
 import os
+import sys
 
 import numpy as np
 import warp as wp
 
 import ocean_warp as ow
 from ocean_warp.atomic_files import atomic_output
+from ocean_warp.cli_support import (
+    add_device_argument,
+    check_options,
+    checked_device,
+    fail,
+    finite_at_least,
+    job_parser,
+    plural,
+)
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 
 SHAPES = {
@@ -25,6 +34,10 @@ SHAPES = {
     "sphere": lambda: ow.Hull.sphere(0.6, subdivisions=3),
     "cylinder": lambda: ow.Hull.cylinder(0.4, 3.0, sections=24),
 }
+
+
+DT = 0.02
+"""Time step of the simulation [s]."""
 
 
 def boat_types() -> list[ow.BoatType]:
@@ -38,6 +51,9 @@ def boat_types() -> list[ow.BoatType]:
 
 
 def run(out_dir: str, *, device=None, boats_per_shape: int = 8, seconds: float = 40.0, seed: int = 3) -> dict:
+    """Drop ``boats_per_shape`` hulls of each shape at random places, heights (1-2.5 m) and tilts (seeded by
+    ``seed``), simulate ``seconds`` [s] on ``device`` and write the PNG and CSV into ``out_dir``; returns the
+    device, the number of boats, how many ended flagged (``Fleet.status`` not 0) and the files."""
     rng = np.random.default_rng(seed)
     types = boat_types()
     type_of_boat = np.repeat(np.arange(len(types)), boats_per_shape)
@@ -48,7 +64,7 @@ def run(out_dir: str, *, device=None, boats_per_shape: int = 8, seconds: float =
     start = np.column_stack([rng.uniform(0, 200, size=(count, 2)), rng.uniform(1.0, 2.5, size=count)])
     tilt = np.column_stack([rng.uniform(-0.4, 0.4, size=(count, 2)), rng.uniform(-np.pi, np.pi, size=count)])
     fleet.reset(position=start, orientation=quaternion_from_roll_pitch_yaw(tilt))
-    config = ow.SimulatorConfig(dt=0.02, substeps=4)
+    config = ow.SimulatorConfig(dt=DT, substeps=4)
     simulator = ow.Simulator(ocean, fleet, config)
     steps = int(round(seconds / config.dt))
     times, heave, roll = np.arange(1, steps + 1) * config.dt, np.empty((steps, count)), np.empty((steps, count))
@@ -98,19 +114,32 @@ def _write_csv(path, times, heave, roll, names) -> None:
             writer.writerow([f"{times[row]:.3f}"] + [f"{v:.5f}" for v in heave[row]] + [f"{v:.5f}" for v in roll[row]])
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description="Hulls dropped into a JONSWAP sea: heave and roll plots.")
+def main(argv=None) -> int:
+    """``ocean-warp drop-hulls``: returns 0; bad options exit with status 2 and one line."""
+    parser = job_parser("drop-hulls", f"Hulls of {len(SHAPES)} shapes ({', '.join(SHAPES)}) dropped into a JONSWAP "
+                        "sea: heave and roll of each over time (hull_motions.png and hull_motions.csv).")
     parser.add_argument("--out", default="out/drop_hulls", help="folder for the PNG and CSV")
-    parser.add_argument("--device", default=None, help='Warp device, e.g. "cpu" or "cuda:0"')
-    parser.add_argument("--boats-per-shape", type=int, default=8)
+    add_device_argument(parser, default=None)
+    parser.add_argument("--boats-per-shape", type=int, default=8, metavar="N", help="hulls of each shape")
     parser.add_argument("--seconds", type=float, default=40.0, help="simulated time [s]")
     args = parser.parse_args(argv)
+    check_options(parser, (
+        ("--boats-per-shape", args.boats_per_shape, args.boats_per_shape >= 1, "a whole number >= 1"),
+        ("--seconds", args.seconds, finite_at_least(args.seconds, DT), f"a number of seconds >= one step ({DT} s)"),
+    ))
+    device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    report = run(args.out, device=args.device, boats_per_shape=args.boats_per_shape, seconds=args.seconds)
-    print(f"{report['boats']} hulls on {report['device']}, {report['flagged']} flagged")
+    try:
+        os.makedirs(args.out, exist_ok=True)
+    except OSError as error:
+        fail(parser, f"--out {args.out}: {error.strerror or error}")
+    report = run(args.out, device=device, boats_per_shape=args.boats_per_shape, seconds=args.seconds)
+    print(f"{plural(report['boats'], 'hull')} on {report['device']} for {args.seconds:g} s, "
+          f"{report['flagged']} flagged (capsized, sunk, flying or non-finite)")
     for path in report["files"]:
         print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

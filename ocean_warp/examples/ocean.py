@@ -1,6 +1,6 @@
 """Example: a JONSWAP sea, advanced in time, with a picture of its surface and its spectrum.
 
-    python -m ocean_warp.examples.ocean --out out/ocean
+    ocean-warp ocean --out out/ocean          # or: python -m ocean_warp.examples.ocean --out out/ocean
 
 Writes ``ocean_height.png`` (the height field at the last time) and ``ocean_spectrum.png`` (the
 spectrum the sea was drawn from against the one measured on the evolving grid).
@@ -8,10 +8,10 @@ spectrum the sea was drawn from against the one measured on the evolving grid).
 
 from __future__ import annotations
 
-import argparse
 import logging
 import math
 import os
+import sys
 import time
 
 import numpy as np
@@ -19,6 +19,16 @@ import warp as wp
 
 from ocean_warp import Ocean, OceanConfig, spectra
 from ocean_warp.atomic_files import atomic_output
+from ocean_warp.cli_support import (
+    add_device_argument,
+    check_options,
+    checked_device,
+    fail,
+    finite_above,
+    finite_at_least,
+    job_parser,
+)
+from ocean_warp.ocean_config import MAX_RESOLUTION, MIN_RESOLUTION
 
 
 def measured_frequency_spectrum(heights: list[np.ndarray], config: OceanConfig, bin_width: float):
@@ -103,23 +113,42 @@ def run(out_dir: str, *, device=None, resolution: int = 256, significant_wave_he
             "seconds_per_update": elapsed / snapshots, "files": [height_png, spectrum_png]}
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description="A JONSWAP sea: height field and spectrum PNGs.")
-    parser.add_argument("--out", default="out/ocean", help="folder for the PNGs (default: out/ocean)")
-    parser.add_argument("--device", default=None, help='Warp device, e.g. "cpu" or "cuda:0" (default: Warp\'s)')
-    parser.add_argument("--resolution", type=int, default=256, help="grid points per side (power of two)")
+def main(argv=None) -> int:
+    """``ocean-warp ocean``: returns 0; bad options exit with status 2 and one line."""
+    parser = job_parser("ocean", "A JONSWAP sea, advanced in time: its height field and its spectrum (the target "
+                        "against the one measured on the grid), as PNGs.")
+    parser.add_argument("--out", default="out/ocean", help="folder for the PNGs")
+    add_device_argument(parser, default=None)
+    parser.add_argument("--resolution", type=int, default=256,
+                        help=f"grid points per side (a power of two, {MIN_RESOLUTION} to {MAX_RESOLUTION}); the "
+                        "tile is 4 m per point")
     parser.add_argument("--hs", type=float, default=2.0, help="significant wave height [m]")
     parser.add_argument("--tp", type=float, default=8.0, help="peak period [s]")
     parser.add_argument("--seconds", type=float, default=120.0, help="simulated time [s]")
     args = parser.parse_args(argv)
+    resolution = args.resolution
+    check_options(parser, (
+        ("--resolution", resolution,
+         MIN_RESOLUTION <= resolution <= MAX_RESOLUTION and not resolution & (resolution - 1),
+         f"a power of two from {MIN_RESOLUTION} to {MAX_RESOLUTION}"),
+        ("--hs", args.hs, finite_at_least(args.hs, 0.0), "a number >= 0 [m]"),
+        ("--tp", args.tp, finite_above(args.tp, 0.0), "a number > 0 [s]"),
+        ("--seconds", args.seconds, finite_above(args.seconds, 0.0), "a number > 0 [s]"),
+    ))
+    device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    report = run(args.out, device=args.device, resolution=args.resolution, significant_wave_height=args.hs,
+    try:
+        os.makedirs(args.out, exist_ok=True)
+    except OSError as error:
+        fail(parser, f"--out {args.out}: {error.strerror or error}")
+    report = run(args.out, device=device, resolution=args.resolution, significant_wave_height=args.hs,
                  peak_period=args.tp, seconds=args.seconds)
     print(f"ocean on {report['device']}: Hs on the grid {report['grid_hs']:.3f} m, measured {report['measured_hs']:.3f} m, "
           f"{report['seconds_per_update'] * 1e3:.2f} ms per update (with copies to the host)")
     for path in report["files"]:
         print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -9,17 +9,27 @@ Writes ``polar.png`` and ``polar.csv``. A few minutes on a CPU, seconds on a GPU
 
 from __future__ import annotations
 
-import argparse
 import csv
 import logging
 import math
 import os
+import sys
 import time
 
 import numpy as np
 import warp as wp
 
 from ocean_warp.atomic_files import atomic_output
+from ocean_warp.cli_support import (
+    add_device_argument,
+    check_options,
+    checked_device,
+    fail,
+    finite_above,
+    finite_at_least,
+    job_parser,
+    plural,
+)
 from ocean_warp.eboat import EBoat
 from ocean_warp.eboat.polar import PolarResult, speed_polar
 
@@ -63,35 +73,58 @@ def plot(path: str, result: PolarResult, limit: float) -> None:
     plt.close(fig)
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description="The E-Boat's speed polar (PNG and CSV).")
+def main(argv=None) -> int:
+    """``ocean-warp polar``: returns 0; bad options exit with status 2 and one line."""
+    parser = job_parser("polar", "The E-Boat's speed polar: steady speed over true wind angles 0-180 deg, the "
+                        "sheet trimmed for speed (polar.png and polar.csv).")
     parser.add_argument("--out", default="out/polar", help="folder for polar.png and polar.csv")
-    parser.add_argument("--device", default=None, help='Warp device, e.g. "cpu" or "cuda:0"')
-    parser.add_argument("--wind-speeds", type=float, nargs="+", default=[4.0, 7.0, 10.0], help="[m/s]")
-    parser.add_argument("--angle-step", type=float, default=15.0, help="true wind angle step [deg]")
-    parser.add_argument("--sheet-step", type=float, default=15.0, help="sheet search step [deg]")
-    parser.add_argument("--settle", type=float, default=60.0, help="settling time [s]")
+    add_device_argument(parser, default=None)
+    parser.add_argument("--wind-speeds", type=float, nargs="+", default=[4.0, 7.0, 10.0], metavar="MPS",
+                        help="true wind speeds [m/s] (default: 4 7 10)")
+    parser.add_argument("--angle-step", type=float, default=15.0, metavar="DEG",
+                        help="true wind angle step [deg] (angles 0 to 180)")
+    parser.add_argument("--sheet-step", type=float, default=15.0, metavar="DEG",
+                        help="sheet search step [deg] (settings 0 to 90)")
+    parser.add_argument("--settle", type=float, default=60.0, metavar="SECONDS",
+                        help="settling time before the speed is averaged [s]")
     args = parser.parse_args(argv)
+    bad_wind = next((v for v in args.wind_speeds if not finite_above(v, 0.0)), None)
+    check_options(parser, (
+        ("--wind-speeds", bad_wind, bad_wind is None, "numbers > 0 [m/s]"),
+        ("--angle-step", args.angle_step, finite_above(args.angle_step, 0.0) and args.angle_step <= 180.0,
+         "in (0, 180] [deg]"),
+        ("--sheet-step", args.sheet_step, finite_above(args.sheet_step, 0.0) and args.sheet_step <= 90.0,
+         "in (0, 90] [deg]"),
+        ("--settle", args.settle, finite_at_least(args.settle, 0.0), "a number >= 0 [s]"),
+    ))
+    device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
+    try:
+        os.makedirs(args.out, exist_ok=True)
+    except OSError as error:
+        fail(parser, f"--out {args.out}: {error.strerror or error}")
     eboat = EBoat()
     start = time.perf_counter()
     result = speed_polar(wind_speeds=args.wind_speeds, wind_angles_deg=np.arange(0.0, 180.0 + 1e-9, args.angle_step),
                          sheets_deg=np.arange(0.0, 90.0 + 1e-9, args.sheet_step), settle_time=args.settle,
-                         device=args.device)
+                         device=device)
     elapsed = time.perf_counter() - start
-    os.makedirs(args.out, exist_ok=True)
     png, table = os.path.join(args.out, "polar.png"), os.path.join(args.out, "polar.csv")
     limit = hull_speed(eboat)
     plot(png, result, limit)
     write_csv(table, result)
     boats = result.all_speeds.size
-    print(f"{boats} boats sailed in {elapsed:.0f} s; hull speed {limit:.2f} m/s; best speed "
-          f"{np.nanmax(result.speed):.2f} m/s")
-    for i, tws in enumerate(result.wind_speeds):
-        row = " ".join("  --" if np.isnan(v) else f"{v:4.2f}" for v in result.speed[i])
-        print(f"  {tws:4.1f} m/s: {row}")
+    held = np.isfinite(result.speed)
+    best = f"best speed {np.max(result.speed[held]):.2f} m/s" if held.any() else "no wind angle held"
+    print(f"{plural(boats, 'boat')} sailed in {elapsed:.0f} s on {device}; hull speed {limit:.2f} m/s; {best}")
+    print("boat speed [m/s] by true wind speed (rows) and angle [deg] (columns; --: not held)")
+    labels = [f"  {tws:4.1f} m/s: " for tws in result.wind_speeds]
+    print(" " * len(labels[0]) + " ".join(f"{math.degrees(a):4.0f}" for a in result.wind_angles))
+    for label, speeds in zip(labels, result.speed):
+        print(label + " ".join("  --" if np.isnan(v) else f"{v:4.2f}" for v in speeds))
     print(f"wrote {png}\nwrote {table}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -1,5 +1,6 @@
-"""USD export: record a simulation into a stage (ocean surface, boats with boom and rudder, route, wind),
-write a seamless loop of an ocean, check a stage with USD's validators and draw a preview PNG of it.
+"""USD export: record a simulation into a stage (ocean surface, boats with boom and rudder, route, wind,
+with UsdPreviewSurface materials, a camera and lights), write a seamless loop of an ocean, check a stage
+with USD's validators and draw a preview PNG of it.
 
 Example::
 
@@ -13,15 +14,20 @@ Example::
     assert validate_stage("out/run.usdc") == []
     render_preview("out/run.usdc")                 # out/run.png
 
-Stages are Z up, 1 metre per unit, with timeCodesPerSecond = fps (time code = time [s] x fps). The prim
-layout is in :mod:`ocean_warp.usd.paths`. Importing this package imports ``pxr`` (usd-core).
+Stages are Z up, 1 metre per unit, with timeCodesPerSecond = framesPerSecond = ``time_codes_per_second``
+(default 24; time code = time [s] x that), so they play in real time whatever ``fps`` they were recorded
+at. The prim layout and model kinds are in :mod:`ocean_warp.usd.paths`. Importing this package imports
+``pxr`` (usd-core).
 """
 
 from .boat_prototype import BoatParts, eboat_parts
 from .ocean_mesh import OceanLattice
 from .preview import render_preview
-from .recorder import INSTANCING_THRESHOLD, StageRecorder, loop_path_for, record_eboat, write_ocean_loop
+from .recorder import (INSTANCING_THRESHOLD, TIME_CODES_PER_SECOND, StageRecorder, loop_path_for, record_eboat,
+                       write_ocean_loop)
+from .stage_file import check_stage_path
 from .validation import validate_stage
 
 __all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "validate_stage", "render_preview",
-           "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "loop_path_for"]
+           "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
+           "loop_path_for", "check_stage_path"]

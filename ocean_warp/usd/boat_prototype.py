@@ -18,6 +18,7 @@ from ..eboat.eboat import MAST_LENGTH, EBoatConfig
 from ..eboat.hull_shape import eboat_hull
 from ..eboat.sheet import BOOM_HEIGHT, FOILS, HULL_LINK_HEIGHT, MAST_STEP
 from .geometry import MeshData, concatenate, define_mesh, ellipsoid, extruded, foil_section, triangle, tube
+from .materials import LOOKS_BY_NAME, bind_look, define_look
 
 __all__ = ["BoatParts", "eboat_parts", "define_boat_prototype", "BODY", "BOOM", "RUDDER"]
 
@@ -39,10 +40,8 @@ KEEL_ROOT_Z = -0.2
 KEEL_THICKNESS = 0.12
 """Fin thickness as a fraction of its chord (assumed)."""
 
-HULL_COLOR = (0.92, 0.92, 0.90)
-FOIL_COLOR = (0.18, 0.20, 0.24)
-SPAR_COLOR = (0.70, 0.70, 0.72)
-SAIL_COLOR = (0.98, 0.96, 0.86)
+PART_LOOKS = {"Hull": "Hull", "Keel": "Foil", "Mast": "Spar", "Spar": "Spar", "Sail": "Sail", "Blade": "Foil"}
+"""The material (:data:`~ocean_warp.usd.materials.LOOKS_BY_NAME`) of each part of the prototype."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -108,14 +107,16 @@ def eboat_parts(config: EBoatConfig | None = None, *, hull_detail: int = 2) -> B
 def define_boat_prototype(stage, path: str, parts: BoatParts) -> dict[str, str]:
     """Author ``parts`` under ``path`` (which should lie below a ``class`` prim, so it is not drawn) as three
     Xforms: ``Body`` (Hull, Keel, Mast), ``Boom`` (Spar, Sail, in the boom's pivot frame) and ``Rudder``
-    (Blade, in the rudder's pivot frame). Returns their paths by name."""
+    (Blade, in the rudder's pivot frame), each part with its material (:data:`PART_LOOKS`) bound and its
+    colour as displayColor. Returns the groups' paths by name."""
     paths = {name: f"{path}/{name}" for name in (BODY, BOOM, RUDDER)}
     for group in paths.values():
         UsdGeom.Xform.Define(stage, group)
-    define_mesh(stage, f"{paths[BODY]}/Hull", parts.hull, color=HULL_COLOR)
-    define_mesh(stage, f"{paths[BODY]}/Keel", parts.keel, color=FOIL_COLOR)
-    define_mesh(stage, f"{paths[BODY]}/Mast", parts.mast, color=SPAR_COLOR)
-    define_mesh(stage, f"{paths[BOOM]}/Spar", parts.spar, color=SPAR_COLOR)
-    define_mesh(stage, f"{paths[BOOM]}/Sail", parts.sail, color=SAIL_COLOR, double_sided=True)
-    define_mesh(stage, f"{paths[RUDDER]}/Blade", parts.blade, color=FOIL_COLOR)
+    meshes = ((BODY, "Hull", parts.hull), (BODY, "Keel", parts.keel), (BODY, "Mast", parts.mast),
+              (BOOM, "Spar", parts.spar), (BOOM, "Sail", parts.sail), (RUDDER, "Blade", parts.blade))
+    for group, name, mesh in meshes:
+        look = PART_LOOKS[name]
+        prim = define_mesh(stage, f"{paths[group]}/{name}", mesh, color=LOOKS_BY_NAME[look].color,
+                           double_sided=name == "Sail")
+        bind_look(prim.GetPrim(), define_look(stage, look))
     return paths

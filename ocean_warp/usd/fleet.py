@@ -1,12 +1,16 @@
 """The boats in a stage, in one of two layouts, both animated one frame at a time.
 
-- **One prim per boat** (:class:`PrimFleetWriter`): ``Boat_0000``... Xforms with a time-sampled translate
-  and orient (the pose), each holding ``Body``, ``Boom`` and ``Rudder`` that reference the prototype; the
-  boom's and the rudder's rotateZ are time-sampled. Good for a few dozen boats.
+- **One prim per boat** (:class:`PrimFleetWriter`): ``Boat_0000``... Xforms (``component`` models) with a
+  time-sampled translate and orient (the pose), each holding ``Body``, ``Boom`` and ``Rudder`` that
+  reference the prototype; the boom's and the rudder's rotateZ are time-sampled; each hull has its colour
+  from :data:`~ocean_warp.usd.materials.HULL_PALETTE`. Good for a few dozen boats.
 - **Point instancers** (:class:`InstancedFleetWriter`): animation inside a PointInstancer's prototype
   would be shared by every instance, so each moving part has its own instancer (``Bodies``, ``Booms``,
   ``Rudders``) whose instances carry that part's world pose, composed here on the host from the boat's
-  pose and the part's pivot and angle. A few arrays per frame, however many boats.
+  pose and the part's pivot and angle. A few arrays per frame, however many boats; every hull has the
+  prototype's colour.
+
+The fleet's prim is an ``assembly`` model in both layouts.
 
 Quaternions on the way in are Warp's (x, y, z, w), body (FLU) -> world (ENU).
 """
@@ -14,9 +18,10 @@ Quaternions on the way in are Warp's (x, y, z, w), body (FLU) -> world (ENU).
 from __future__ import annotations
 
 import numpy as np
-from pxr import Gf, Sdf, UsdGeom, Vt
+from pxr import Gf, Kind, Sdf, Usd, UsdGeom, Vt
 
 from .boat_prototype import BODY, BOOM, RUDDER, BoatParts
+from .materials import HULL_PALETTE, Look, LOOKS_BY_NAME, bind_look, define_look, hull_look_name
 from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, boat_path
 
 __all__ = ["PrimFleetWriter", "InstancedFleetWriter", "quaternion_multiply", "quaternion_rotate", "about_z"]
@@ -52,7 +57,20 @@ def about_z(angle: np.ndarray) -> np.ndarray:
 def _fleet_prim(stage, count: int):
     fleet = UsdGeom.Xform.Define(stage, FLEET)
     fleet.GetPrim().CreateAttribute(BOAT_COUNT_ATTRIBUTE, Sdf.ValueTypeNames.Int, custom=True).Set(int(count))
+    Usd.ModelAPI(fleet.GetPrim()).SetKind(Kind.Tokens.assembly)
     return fleet
+
+
+def _paint_hull(stage, boat: str, index: int) -> None:
+    """Give the hull of the boat at path ``boat`` colour ``index`` of HULL_PALETTE: an override of the
+    prototype's material binding and displayColor on this boat's own hull (entry 0 is the prototype's)."""
+    if index % len(HULL_PALETTE) == 0:
+        return
+    color = HULL_PALETTE[index % len(HULL_PALETTE)]
+    material = define_look(stage, hull_look_name(index), Look(color, roughness=LOOKS_BY_NAME["Hull"].roughness))
+    hull = stage.OverridePrim(f"{boat}/{BODY}/Hull")
+    UsdGeom.Gprim(hull).CreateDisplayColorPrimvar(UsdGeom.Tokens.constant).Set(Vt.Vec3fArray([Gf.Vec3f(*color)]))
+    bind_look(hull, material)
 
 
 class PrimFleetWriter:
@@ -64,6 +82,7 @@ class PrimFleetWriter:
         self._pose, self._boom, self._rudder = [], [], []
         for i in range(count):
             boat = UsdGeom.Xform.Define(stage, boat_path(i))
+            Usd.ModelAPI(boat.GetPrim()).SetKind(Kind.Tokens.component)
             self._pose.append((boat.AddTranslateOp(UsdGeom.XformOp.PrecisionDouble),
                                boat.AddOrientOp(UsdGeom.XformOp.PrecisionFloat)))
             body = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{BODY}")
@@ -73,6 +92,7 @@ class PrimFleetWriter:
                 part.GetPrim().GetReferences().AddInternalReference(prototype[name])
                 part.AddTranslateOp().Set(Gf.Vec3d(*map(float, pivot)))
                 ops.append(part.AddRotateZOp())
+            _paint_hull(stage, boat_path(i), i)
 
     def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles) -> None:
         """One frame: positions (N, 3) [m], unit orientations (N, 4) (x, y, z, w), boom and rudder angles

@@ -9,6 +9,11 @@ waves shorter than about two lattice spacings from view; it does not filter them
 
 Size: float arrays are stored uncompressed, so each frame costs 12 bytes per vertex for the points, as
 much again for colours and for normals.
+
+The first frame written is also each attribute's default value, so the mesh has a shape at the default
+time (and before any sample, for a reader that asks there); in a layer, time samples win over the default.
+The mesh's material (:mod:`~ocean_warp.usd.materials`) takes its colours from the per-vertex
+displayColor when there is one, else it is a plain sea colour.
 """
 
 from __future__ import annotations
@@ -17,16 +22,18 @@ import dataclasses
 import math
 
 import numpy as np
-from pxr import Gf, UsdGeom, Vt
+from pxr import Gf, Kind, Usd, UsdGeom, Vt
 
 from ..kernels.ocean_spectrum import FIELD_DISPLACEMENT, FIELD_HEIGHT, FIELD_SLOPE
 from ..ocean import Ocean
 from ..ocean_config import OceanConfig
+from .materials import LOOKS_BY_NAME, bind_look, define_look, define_vertex_color_look
 
-__all__ = ["OceanLattice", "OceanMeshWriter", "ocean_fields_at", "height_colors", "check_extent"]
+__all__ = ["OceanLattice", "OceanMeshWriter", "ocean_fields_at", "height_colors", "check_extent",
+           "define_referenced_ocean", "bind_ocean_look"]
 
 _DEEP = np.array([0.02, 0.12, 0.30])
-_MEAN = np.array([0.05, 0.35, 0.55])
+_MEAN = np.array(LOOKS_BY_NAME["Sea"].color)
 _CREST = np.array([0.80, 0.93, 0.97])
 
 
@@ -140,12 +147,33 @@ def height_colors(heights: np.ndarray, half_range: float) -> np.ndarray:
     return np.where(s < 0.0, _MEAN + (-s) * (_DEEP - _MEAN), _MEAN + s * (_CREST - _MEAN))
 
 
+def bind_ocean_look(prim, *, colors: bool) -> None:
+    """Bind the ocean's material to ``prim``: the per-vertex displayColor through a primvar reader when the
+    mesh has ``colors``, else the plain sea colour."""
+    stage = prim.GetStage()
+    bind_look(prim, define_vertex_color_look(stage, "Ocean") if colors else define_look(stage, "Sea"))
+
+
+def define_referenced_ocean(stage, path: str, rest_path: str, *, colors: bool) -> UsdGeom.Mesh:
+    """The ocean mesh at ``path`` as a reference to the mesh at ``rest_path`` (its topology and still values,
+    written by an :class:`OceanMeshWriter` with ``model=False``): a ``component`` model with the ocean's
+    material, whose animation comes from stronger opinions authored later (value clips)."""
+    mesh = UsdGeom.Mesh.Define(stage, path)
+    prim = mesh.GetPrim()
+    prim.GetReferences().AddInternalReference(rest_path)
+    Usd.ModelAPI(prim).SetKind(Kind.Tokens.component)
+    bind_ocean_look(prim, colors=colors)
+    return mesh
+
+
 class OceanMeshWriter:
     """Authors the ocean mesh at ``path``: topology once, then :meth:`write` adds one frame (points, extent and
-    optionally vertex normals and a displayColor by height) at a time code."""
+    optionally vertex normals and a displayColor by height) at a time code, the first one also as the
+    default values. ``model``: make the mesh a ``component`` model with the ocean's material (False for a
+    mesh that others reference)."""
 
     def __init__(self, stage, path: str, lattice: OceanLattice, *, choppiness: float, normals: bool,
-                 colors: bool, color_range: float):
+                 colors: bool, color_range: float, model: bool = True):
         self.lattice = lattice
         self.choppiness = float(choppiness)
         self.color_range = float(color_range)
@@ -161,17 +189,28 @@ class OceanMeshWriter:
             self._normals = self.mesh.CreateNormalsAttr()
             self.mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
         self._colors = self.mesh.CreateDisplayColorPrimvar(UsdGeom.Tokens.vertex) if colors else None
+        if model:
+            Usd.ModelAPI(self.mesh.GetPrim()).SetKind(Kind.Tokens.component)
+            bind_ocean_look(self.mesh.GetPrim(), colors=colors)
+        self._has_default = False
 
-    def write(self, time_code: float, fields: np.ndarray) -> np.ndarray:
-        """Add the surface of the host fields ``fields`` (4, n, n, 2) at ``time_code``; returns its points."""
+    def write(self, time_code: float | None, fields: np.ndarray) -> np.ndarray:
+        """Add the surface of the host fields ``fields`` (4, n, n, 2) at ``time_code`` (None: as the default
+        values only); the first surface written is also the default values. Returns its points [m]."""
         points, normals = self.lattice.surface(fields, self.choppiness, normals=self._normals is not None)
         points32 = points.astype(np.float32)
-        self._points.Set(Vt.Vec3fArray.FromNumpy(points32), time_code)
         low, high = points32.min(axis=0), points32.max(axis=0)
-        self._extent.Set(Vt.Vec3fArray([Gf.Vec3f(*map(float, low)), Gf.Vec3f(*map(float, high))]), time_code)
+        values = [(self._points, Vt.Vec3fArray.FromNumpy(points32)),
+                  (self._extent, Vt.Vec3fArray([Gf.Vec3f(*map(float, low)), Gf.Vec3f(*map(float, high))]))]
         if self._normals is not None:
-            self._normals.Set(Vt.Vec3fArray.FromNumpy(normals.astype(np.float32)), time_code)
+            values.append((self._normals, Vt.Vec3fArray.FromNumpy(normals.astype(np.float32))))
         if self._colors is not None:
             colors = height_colors(points[:, 2], self.color_range).astype(np.float32)
-            self._colors.Set(Vt.Vec3fArray.FromNumpy(colors), time_code)
+            values.append((self._colors, Vt.Vec3fArray.FromNumpy(colors)))
+        for attribute, value in values:
+            if not self._has_default:
+                attribute.Set(value)
+            if time_code is not None:
+                attribute.Set(value, time_code)
+        self._has_default = True
         return points

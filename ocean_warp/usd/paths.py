@@ -2,26 +2,43 @@
 
 from __future__ import annotations
 
-__all__ = ["WORLD", "OCEAN", "FLEET", "ROUTE", "WAYPOINTS", "ROUTE_PATH", "WIND", "LIBRARY", "BOAT_PROTOTYPE",
-           "BOAT_COUNT_ATTRIBUTE", "WIND_DIRECTION_ATTRIBUTE", "WIND_SPEED_ATTRIBUTE", "boat_path"]
+__all__ = ["WORLD", "OCEAN", "FLEET", "ROUTE", "WAYPOINTS", "ROUTE_PATH", "WIND", "LOOKS", "CAMERA", "LIGHTS",
+           "SUN", "SKY", "LIBRARY", "BOAT_PROTOTYPE", "OCEAN_REST", "BOAT_COUNT_ATTRIBUTE", "WIND_DIRECTION_ATTRIBUTE",
+           "WIND_SPEED_ATTRIBUTE", "ROUTE_INDICES_ATTRIBUTE", "boat_path"]
 
 WORLD = "/World"
-"""The default prim: everything a viewer shows lies below it."""
+"""The default prim, a ``group`` model: everything a viewer shows lies below it."""
 OCEAN = "/World/Ocean"
-"""The ocean surface (Mesh)."""
+"""The ocean surface (Mesh, a ``component`` model)."""
 FLEET = "/World/Fleet"
-"""The boats: ``Boat_0000``... (one Xform each) or the instancers ``Bodies``, ``Booms`` and ``Rudders``."""
+"""The boats (an ``assembly`` model): ``Boat_0000``... (one Xform each, a ``component`` model) or the
+instancers ``Bodies``, ``Booms`` and ``Rudders``."""
 ROUTE = "/World/Route"
+"""The course (a ``component`` model): the buoys and the path."""
 WAYPOINTS = "/World/Route/Waypoints"
-"""One marker buoy per waypoint, ``Waypoint_000``..."""
+"""One buoy per place the route visits, ``Waypoint_000``... in route order of first visit: an Xform at the
+place, its display name the place's label(s), holding the buoy's mesh ``Buoy_<label>``."""
 ROUTE_PATH = "/World/Route/Path"
-"""The mission path through the waypoints (BasisCurves, linear)."""
+"""The mission path from the start through the waypoints (BasisCurves, linear)."""
 WIND = "/World/Wind"
-"""The wind arrow (an Xform holding a Mesh), pointing where the wind blows towards."""
+"""The wind arrow (an Xform holding a Mesh, a ``component`` model), pointing where the wind blows towards."""
+LOOKS = "/World/Looks"
+"""The materials (UsdPreviewSurface), one per look: ``Hull``, ``Sail``, ``Ocean``..."""
+CAMERA = "/World/Camera"
+"""A camera framing the area the route and the boats cover, from the south and above."""
+LIGHTS = "/World/Lights"
+SUN = "/World/Lights/Sun"
+"""A DistantLight, the sun."""
+SKY = "/World/Lights/Sky"
+"""A DomeLight of uniform sky colour."""
 LIBRARY = "/Library"
 """A ``class`` prim (not drawn) holding the geometry that boats and instancers reference."""
 BOAT_PROTOTYPE = "/Library/EBoat"
 """The E-Boat's parts: ``Body`` (hull, keel, mast), ``Boom`` (spar and sail) and ``Rudder`` (blade)."""
+OCEAN_REST = "/Library/OceanRest"
+"""With a looping ocean: the ocean mesh at the first frame (topology, points, extent, colours), which the
+ocean references, so that its attributes have a value outside the value clips (at the default time); the
+clips, a stronger opinion, give the animation."""
 
 BOAT_COUNT_ATTRIBUTE = "oceanWarp:boatCount"
 """int on :data:`FLEET`: the number of boats recorded."""
@@ -29,6 +46,8 @@ WIND_DIRECTION_ATTRIBUTE = "oceanWarp:windDirection"
 """float on :data:`WIND`: the direction the wind blows towards [rad], from +x counter-clockwise."""
 WIND_SPEED_ATTRIBUTE = "oceanWarp:windSpeed"
 """float on :data:`WIND`: the wind speed [m/s]."""
+ROUTE_INDICES_ATTRIBUTE = "oceanWarp:routeIndices"
+"""int[] on each waypoint buoy: the places in the route (from 0) that visit it."""
 
 
 def boat_path(index: int) -> str:

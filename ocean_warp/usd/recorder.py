@@ -15,7 +15,9 @@ Example::
             sim.step()
     # out/run.usdc appears only here, complete.
 
-Layout of the stage: ``ocean_warp.usd.paths``. Time code = time [s] x fps.
+Layout of the stage: ``ocean_warp.usd.paths``. Time code = time [s] x time_codes_per_second (default 24,
+the stage's timeCodesPerSecond and framesPerSecond), so a viewer playing at the stage's frame rate shows
+one second of simulation in one second, whatever the rate the frames were recorded at (``fps``).
 """
 
 from __future__ import annotations
@@ -28,18 +30,23 @@ from pxr import Sdf, Usd
 
 from ..eboat.eboat import EBoatConfig
 from ..ocean import Ocean
-from ..validation import require_finite, require_int_in_range, require_non_negative
+from ..validation import require_finite, require_int_in_range, require_non_negative, require_positive
 from .boat_prototype import define_boat_prototype, eboat_parts
 from .fleet import InstancedFleetWriter, PrimFleetWriter
 from .markers import define_route, define_wind_arrow
-from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, ocean_fields_at
-from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN
+from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
+from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST
 from .stage_file import StageFile
+from .view import define_camera, define_lights
 
-__all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "INSTANCING_THRESHOLD", "loop_path_for"]
+__all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
+           "loop_path_for"]
 
 INSTANCING_THRESHOLD = 64
 """Fleets larger than this are written as point instancers unless ``instanced`` says otherwise."""
+TIME_CODES_PER_SECOND = 24.0
+"""Default time codes (and frames) per second of a stage: Blender's default frame rate, so it plays the
+stage in real time."""
 
 
 def loop_path_for(path) -> str:
@@ -54,19 +61,19 @@ def _color_range(ocean: Ocean) -> float:
     return max(0.6 * ocean.significant_wave_height, 0.05)
 
 
-def _loop_time_codes(loop_period: float, fps: float) -> np.ndarray:
+def _loop_time_codes(loop_period: float, fps: float, time_codes_per_second: float) -> np.ndarray:
     """Time codes of one loop's frames, both ends included (the last equals the first): about ``fps`` frames
-    per second, at least 2 per loop."""
+    per second [1/s], at least 2 per loop, at ``time_codes_per_second`` [1/s]."""
     frames = max(2, round(loop_period * fps))
-    return np.arange(frames + 1) * (loop_period * fps / frames)
+    return np.arange(frames + 1) * (loop_period * time_codes_per_second / frames)
 
 
-def _write_loop_frames(stage, ocean: Ocean, lattice: OceanLattice, fps: float, *, normals: bool, colors: bool,
-                       time_codes: np.ndarray) -> None:
+def _write_loop_frames(stage, ocean: Ocean, lattice: OceanLattice, time_codes_per_second: float, *, normals: bool,
+                       colors: bool, time_codes: np.ndarray) -> None:
     writer = OceanMeshWriter(stage, OCEAN, lattice, choppiness=ocean.config.choppiness, normals=normals,
                              colors=colors, color_range=_color_range(ocean))
     for code in time_codes:
-        writer.write(float(code), ocean_fields_at(ocean, float(code) / fps))
+        writer.write(float(code), ocean_fields_at(ocean, float(code) / time_codes_per_second))
 
 
 def _require_loop(owner: str, ocean: Ocean) -> float:
@@ -76,12 +83,14 @@ def _require_loop(owner: str, ocean: Ocean) -> float:
     return ocean.config.loop_period
 
 
-def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, resolution: int = 128, extent=None,
-                     normals: bool = False, colors: bool = True, ascii: bool | None = None) -> str:
+def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, time_codes_per_second: float = TIME_CODES_PER_SECOND,
+                     resolution: int = 128, extent=None, normals: bool = False, colors: bool = True,
+                     ascii: bool | None = None) -> str:
     """Write one seamless loop of ``ocean`` (built with ``OceanConfig.loop_period`` T [s]) to ``path`` and
-    return the path. The stage holds the surface at time codes 0 ... T fps (about ``fps`` frames per
-    second, the last frame equal to the first), so a viewer that repeats the time range shows the sea
-    forever without a seam; time code c shows the ocean at time c / fps [s] (modulo T).
+    return the path. The stage holds the surface at time codes 0 ... T r, r = ``time_codes_per_second``
+    (about ``fps`` frames per second of the sea, the last frame equal to the first), so a viewer that
+    repeats the time range shows the sea forever without a seam, in real time at r frames per second;
+    time code c shows the ocean at time c / r [s] (modulo T).
 
     ``resolution``: at most this many vertices along either side of ``extent`` (xmin, xmax, ymin, ymax) [m]
     (default: one tile, [0, tile_size]^2). ``normals``/``colors``: vertex normals and a displayColor by
@@ -93,15 +102,17 @@ def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, resolution: int =
     if not isinstance(ocean, Ocean):
         raise ValueError(f"{owner}: ocean must be an Ocean, got {type(ocean).__name__}")
     period = _require_loop(owner, ocean)
+    fps = require_positive(owner, "fps", fps, unit=" [frames/s]")
     resolution = require_int_in_range(owner, "resolution", resolution, 2, 4096)
     tile = ocean.config.tile_size
     extent = check_extent(owner, extent) if extent is not None else (0.0, tile, 0.0, tile)
-    stage_file = StageFile(path, fps=fps, ascii=ascii, owner=owner)
+    stage_file = StageFile(path, time_codes_per_second=time_codes_per_second, ascii=ascii, owner=owner)
     try:
         stage = stage_file.stage
         lattice = OceanLattice.covering(ocean.config, extent, resolution)
-        codes = _loop_time_codes(period, stage_file.fps)
-        _write_loop_frames(stage, ocean, lattice, stage_file.fps, normals=normals, colors=colors, time_codes=codes)
+        rate = stage_file.time_codes_per_second
+        codes = _loop_time_codes(period, fps, rate)
+        _write_loop_frames(stage, ocean, lattice, rate, normals=normals, colors=colors, time_codes=codes)
         stage.SetStartTimeCode(0.0)
         stage.SetEndTimeCode(float(codes[-1]))
     except BaseException:
@@ -129,8 +140,12 @@ class StageRecorder:
 
     - ``path``: the stage to write, ``.usdc`` (crate, default), ``.usda`` (text) or ``.usd`` (crate, or text
       with ``ascii=True``). Nothing appears there until :meth:`close`; see ``ocean_warp.usd.stage_file``.
-    - ``fps``: frames per second of playback [1/s]; the stage's timeCodesPerSecond. Time code = t [s] x fps,
-      so recording every k-th step of dt plays in real time with fps = 1 / (k dt).
+    - ``fps``: frames recorded per second of simulated time [1/s] (recording every k-th step of dt: 1 / (k dt));
+      a looping ocean is written at about this rate too.
+    - ``time_codes_per_second``: the stage's timeCodesPerSecond and framesPerSecond [1/s] (default 24,
+      Blender's default frame rate; 30, or any positive value). Time code = t [s] x this, so one
+      second of simulation plays in one second; the samples stay one per recorded frame (a viewer
+      interpolates between them).
     - ``ocean``: the :class:`Ocean` to draw (None: no ocean). Each frame evaluates it at the frame's time
       (its clock is left as it was).
     - ``ocean_resolution``: at most this many mesh vertices along either side of the ocean's extent; the
@@ -149,21 +164,30 @@ class StageRecorder:
       prim per boat (False); None picks instancers above :data:`INSTANCING_THRESHOLD` boats.
     - ``boat``: the ``EBoatConfig`` whose dimensions the boats are drawn with (default V-C).
     - ``route``: waypoints (R, 2) (or (R, 3)) [m], drawn as buoys and the path through them;
-      ``route_labels``: their R names (e.g. ``"BCDACA"``), the buoys' display names.
+      ``route_labels``: their R names (e.g. ``"BCDACA"``), the buoys' display names; ``route_start`` (2,)
+      or (3,) [m]: where the boats set off, the first point of the path (e.g. A for the BCDACA mission).
     - ``wind_direction`` [rad, where it blows towards], ``wind_speed`` [m/s], ``wind_origin`` (3,) [m]: the
       wind arrow (drawn when a direction is given; origin default: a corner of the ocean, 8 m up).
     - ``ascii``: text instead of crate (see ``path``); ``save_every``: frames between saves of a crate file.
+
+    The stage also holds materials for every visible part (``ocean_warp.usd.materials``), a camera framing
+    the ocean mesh (without an ocean: the route and everywhere the boats went), and a sun and a sky light
+    (``ocean_warp.usd.view``).
 
     Use it as a context manager, or call :meth:`close` (success) or :meth:`abort` (failure): an exception
     inside the ``with`` block deletes the temporary file and leaves the target path untouched.
     """
 
-    def __init__(self, path, *, fps: float, ocean: Ocean | None = None, ocean_resolution: int = 64,
-                 ocean_extent=None, ocean_margin: float = 20.0, ocean_normals: bool = False, ocean_colors: bool = True,
-                 ocean_loop: bool = False, boats: int = 0, instanced: bool | None = None, boat=None, route=None,
-                 route_labels=None, wind_direction: float | None = None, wind_speed: float = 5.0, wind_origin=None,
+    def __init__(self, path, *, fps: float, time_codes_per_second: float = TIME_CODES_PER_SECOND,
+                 ocean: Ocean | None = None, ocean_resolution: int = 64, ocean_extent=None, ocean_margin: float = 20.0,
+                 ocean_normals: bool = False, ocean_colors: bool = True, ocean_loop: bool = False, boats: int = 0,
+                 instanced: bool | None = None, boat=None, route=None, route_labels=None, route_start=None,
+                 wind_direction: float | None = None, wind_speed: float = 5.0, wind_origin=None,
                  ascii: bool | None = None, save_every: int = 100):
         owner = "StageRecorder"
+        self.fps = require_positive(owner, "fps", fps, unit=" [frames/s]")
+        self.time_codes_per_second = require_positive(owner, "time_codes_per_second", time_codes_per_second,
+                                                      unit=" [1/s]")
         if ocean is not None and not isinstance(ocean, Ocean):
             raise ValueError(f"{owner}: ocean must be an Ocean or None, got {type(ocean).__name__}")
         self.ocean = ocean
@@ -192,6 +216,11 @@ class StageRecorder:
                 raise ValueError(f"{owner}.route_labels must name each of the route's "
                                  f"{0 if self.route is None else len(self.route)} waypoints, got {len(route_labels)}")
             self.route_labels = [str(label) for label in route_labels]
+        self.route_start = None
+        if route_start is not None:
+            if self.route is None:
+                raise ValueError(f"{owner}.route_start needs a route")
+            self.route_start = _finite_rows(owner, "route_start", [route_start], (2, 3))[0]
         self.wind = None
         if wind_direction is not None:
             self.wind = (require_finite(owner, "wind_direction", wind_direction),
@@ -200,11 +229,11 @@ class StageRecorder:
             else None
         save_every = require_int_in_range(owner, "save_every", save_every, 1, 10**9)
 
-        self._file = StageFile(path, fps=fps, ascii=ascii, save_every=save_every, owner=owner)
+        self._file = StageFile(path, time_codes_per_second=self.time_codes_per_second, ascii=ascii,
+                               save_every=save_every, owner=owner)
         self._loop_file: StageFile | None = None
         self._loop_mesh_prim = None
         try:
-            self.fps = self._file.fps
             stage = self._file.stage
             stage.CreateClassPrim(LIBRARY)
             self._fleet = None
@@ -214,7 +243,7 @@ class StageRecorder:
                 layout = InstancedFleetWriter if self.instanced else PrimFleetWriter
                 self._fleet = layout(stage, self.boats, prototype, parts)
             if self.route is not None:
-                define_route(stage, self.route, labels=self.route_labels)
+                define_route(stage, self.route, labels=self.route_labels, start=self.route_start)
         except BaseException:
             self._file.abort()
             raise
@@ -250,8 +279,9 @@ class StageRecorder:
 
     # --- recording ------------------------------------------------------------------------------
     def time_code(self, time_s: float) -> float:
-        """The time code of time ``time_s`` [s]: time x fps, rounded to a whole frame when within 1e-6 of one."""
-        code = float(time_s) * self.fps
+        """The time code of time ``time_s`` [s]: time x time_codes_per_second, rounded to a whole number when
+        within 1e-6 of one."""
+        code = float(time_s) * self.time_codes_per_second
         nearest = round(code)
         return float(nearest) if abs(code - nearest) < 1e-6 else code
 
@@ -278,8 +308,7 @@ class StageRecorder:
                 self._ocean_writer.write(code, ocean_fields_at(self.ocean, time_s))
             if boats is not None:
                 self._fleet.write(code, *boats)
-                if self.ocean_loop:
-                    self._track_visited(boats[0])
+                self._track_visited(boats[0])
             self._file.frame_written()
         except BaseException:
             self.abort()
@@ -339,7 +368,8 @@ class StageRecorder:
                                              color_range=_color_range(self.ocean))
 
     def _default_extent(self, positions: np.ndarray | None):
-        points = [p[:, :2] for p in (positions, self.route) if p is not None and len(p)]
+        start = self.route_start[None, :] if self.route_start is not None else None
+        points = [p[:, :2] for p in (positions, self.route, start) if p is not None and len(p)]
         if self._visited is not None:
             points.append(self._visited.reshape(2, 2))
         if not points:
@@ -366,23 +396,29 @@ class StageRecorder:
         the margin) and write the loop file; the clips that repeat it are authored at close."""
         extent = self._extent or self._default_extent(None)
         self.lattice = OceanLattice.covering(self.ocean.config, extent, self.ocean_resolution)
-        self._loop_file = StageFile(self.loop_path, fps=self.fps, ascii=self._file.format == "usda",
+        rate = self.time_codes_per_second
+        self._loop_file = StageFile(self.loop_path, time_codes_per_second=rate, ascii=self._file.format == "usda",
                                     owner="StageRecorder")
-        codes = _loop_time_codes(self.ocean.config.loop_period, self.fps)
+        codes = _loop_time_codes(self.ocean.config.loop_period, self.fps, rate)
         loop_stage = self._loop_file.stage
-        _write_loop_frames(loop_stage, self.ocean, self.lattice, self.fps, normals=self.ocean_normals,
+        _write_loop_frames(loop_stage, self.ocean, self.lattice, rate, normals=self.ocean_normals,
                            colors=self.ocean_colors, time_codes=codes)
         loop_stage.SetStartTimeCode(0.0)
         loop_stage.SetEndTimeCode(float(codes[-1]))
-        # The main stage's ocean: the static topology, with the animated attributes from the clips.
-        mesh = OceanMeshWriter(self._file.stage, OCEAN, self.lattice, choppiness=self.ocean.config.choppiness,
+        # The main stage's ocean: a reference to its still first frame (topology and values at the default
+        # time, in the weaker referenced prim), with the animated attributes from the clips, which are
+        # stronger wherever they have samples.
+        stage = self._file.stage
+        rest = OceanMeshWriter(stage, OCEAN_REST, self.lattice, choppiness=self.ocean.config.choppiness,
                                normals=self.ocean_normals, colors=self.ocean_colors,
-                               color_range=_color_range(self.ocean)).mesh
+                               color_range=_color_range(self.ocean), model=False)
+        rest.write(None, ocean_fields_at(self.ocean, self.first_time_code / rate))
+        mesh = define_referenced_ocean(stage, OCEAN, OCEAN_REST, colors=self.ocean_colors)
         self._loop_mesh_prim = mesh.GetPrim()
 
     def _author_loop_clips(self) -> None:
         """Value clips that map every stretch of loop_period on the stage to the loop's time codes."""
-        span = self.ocean.config.loop_period * self.fps
+        span = self.ocean.config.loop_period * self.time_codes_per_second
         first = math.floor(self.first_time_code / span)
         last = math.floor(self.last_time_code / span)
         times = []
@@ -395,9 +431,26 @@ class StageRecorder:
         clips.SetClipTimes(times)
 
     # --- finishing ------------------------------------------------------------------------------
+    def _view_area(self):
+        """(xmin, xmax, ymin, ymax) [m] for the camera: the ocean mesh's area where there is one, else the
+        route and every recorded boat position plus a margin of 5 m; None when there is nothing to frame."""
+        if self.lattice is not None:
+            x, y = self.lattice.ix * self.lattice.cell_size, self.lattice.iy * self.lattice.cell_size
+            return (float(x[0]), float(x[-1]), float(y[0]), float(y[-1]))
+        start = self.route_start[None, :] if self.route_start is not None else None
+        points = [p[:, :2] for p in (self.route, start) if p is not None]
+        if self._visited is not None:
+            points.append(self._visited.reshape(2, 2))
+        if not points:
+            return None
+        xy = np.concatenate(points)
+        return (float(xy[:, 0].min() - 5.0), float(xy[:, 0].max() + 5.0), float(xy[:, 1].min() - 5.0),
+                float(xy[:, 1].max() + 5.0))
+
     def close(self) -> str:
-        """Write the time range (and the loop's clips), save, and move the stage (and the loop) to their
-        paths; returns the stage's path. A recorder with no frame still writes a valid, empty stage."""
+        """Write the time range (and the loop's clips), the camera and lights, save, and move the stage (and
+        the loop) to their paths; returns the stage's path. A recorder with no frame still writes a valid,
+        empty stage."""
         if self._file.closed:
             raise ValueError("StageRecorder.close: the recorder is already closed")
         try:
@@ -408,6 +461,10 @@ class StageRecorder:
             stage.SetEndTimeCode(last)
             if self.ocean_loop and self.first_time_code is not None:
                 self._start_loop()
+            area = self._view_area()
+            if area is not None:
+                define_camera(stage, area)
+            define_lights(stage)
             if self._loop_file is not None:
                 # The loop first, at its final path, so that the clips find it when anything reads them.
                 self._loop_file.commit()
