@@ -6,10 +6,10 @@
 Each run is one environment of ``SailingEnv(MissionConfig())``: A (0, 0) -> B, C, D, A, C, A, each
 reached within 5 m; true wind 10 m/s toward +x with gusts (1 m/s, 0.1 rad); a JONSWAP sea (Hs
 ``--sea-state``, Tp 3 s); each run has its own origin on the periodic tile (its own waves) and its own
-random streams. The autopilot (``ocean_warp.envs.autopilot``) takes the place of the policy: it writes
+random streams. The autopilot (``ocean_warp.envs.controllers.sailing_autopilot``) takes the place of the policy: it writes
 the actions of every decision (1 s) from the environment's current waypoints. A run's first episode
 is its result: success, time, waypoints, tacks, and how it ended (capsize, lost, time-out). The runs are
-sailed by ``ocean_warp.envs.evaluation`` (the runner of ``ocean-warp eval``, which also draws the paths and
+sailed by ``ocean_warp.envs.apps.evaluation`` (the runner of ``ocean-warp eval``, which also draws the paths and
 compares a policy with the autopilot).
 """
 
@@ -27,15 +27,15 @@ import warp as wp
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from ocean_warp.envs.autopilot import AutopilotConfig  # noqa: E402
-from ocean_warp.envs.evaluation import evaluate_mission  # noqa: E402
+from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig  # noqa: E402
+from ocean_warp.envs.apps.evaluation import evaluate_mission  # noqa: E402
 from ocean_warp.fleet import BoatStatus  # noqa: E402
 
 
 def run_mission(runs: int = 20, *, device="cpu", seed: int = 0, sea_state: float = 0.3,
                 time_limit: float | None = None, autopilot: AutopilotConfig | None = None,
                 task=None) -> dict[str, np.ndarray]:
-    """Sail ``runs`` missions at once (``ocean_warp.envs.evaluation``'s runner, the autopilot only); per run:
+    """Sail ``runs`` missions at once (``ocean_warp.envs.apps.evaluation``'s runner, the autopilot only); per run:
     success, time [s], waypoints, the autopilot's own tack count, status bits at the end, time-out.
     ``task``: the mission config to start from (default ``MissionConfig()``)."""
     evaluation = evaluate_mission(None, runs, sea_state=sea_state, seed=seed, device=device, time_limit=time_limit,

@@ -35,8 +35,8 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from benchmarks.timing import device_description, write_results_json  # noqa: E402
 from ocean_warp.envs import SailingEnv, WaypointPlusConfig  # noqa: E402
-from ocean_warp.envs.gym_env import SailingVectorEnv  # noqa: E402
-from ocean_warp.envs.rsl_rl_env import RslRlVecEnv  # noqa: E402
+from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv  # noqa: E402
+from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv  # noqa: E402
 
 
 def policy_network(inputs: int, hidden: list[int], device) -> torch.nn.Module:
@@ -123,7 +123,7 @@ def measure(task, envs: int, device, hidden: list[int], repeats: int, interfaces
         row["gymnasium_s"] = seconds_per_call(gym_step, repeats, sync)
     if "sb3" in interfaces:
         try:
-            from ocean_warp.envs.sb3_env import Sb3VecEnv
+            from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
         except ImportError:
             print("  (sb3 skipped: stable-baselines3 is not installed)")
         else:

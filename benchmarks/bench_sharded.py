@@ -28,7 +28,7 @@ import warp as wp
 
 from ocean_warp.eboat import Hydrostatics
 from ocean_warp.envs import SailingEnv, WaypointConfig
-from ocean_warp.envs.sharded import ShardedSailingEnv
+from ocean_warp.envs.parallel.sharded import ShardedSailingEnv
 
 HULLS = {"points": Hydrostatics.POINTS, "mesh": Hydrostatics.MESH}
 

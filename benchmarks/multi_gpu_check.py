@@ -70,7 +70,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--num-envs", type=int, default=256, help="environments per GPU (default 256)")
     parser.add_argument("--out", default="out/multi_gpu_check", help="runs root (default out/multi_gpu_check)")
     args = parser.parse_args(argv)
-    from ocean_warp.envs.policy_io import read_checkpoint
+    from ocean_warp.envs.training.policy_io import read_checkpoint
 
     visible = torch.cuda.device_count()
     if not 1 <= args.gpus <= visible:

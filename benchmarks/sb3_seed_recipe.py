@@ -40,7 +40,7 @@ from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
 from ocean_warp.atomic_files import atomic_output  # noqa: E402
-from ocean_warp.envs.sb3_env import Sb3VecEnv  # noqa: E402
+from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv  # noqa: E402
 
 TASK_ID = "EBoatWaypoint-v0"
 """The seed paper's waypoint task (``WaypointConfig()``)."""

@@ -5,7 +5,7 @@
 For each true wind speed (default 5 and 10 m/s) the boat starts close-hauled on starboard (the wind over
 its starboard bow) at the true wind angle of its best upwind VMG in the polar, with that polar point's
 sheet, in flat water and a steady wind; the propeller stays off. After ``--settle`` seconds the heading
-autopilot (``ocean_warp.eboat.autopilot.HeadingAutopilot``, PID on the rudder) is told to hold the same
+autopilot (``ocean_warp.eboat.heading_autopilot.HeadingAutopilot``, PID on the rudder) is told to hold the same
 angle on port. Reported per wind speed, with ``--boats`` copies of the run started at slightly different
 sheets (the polar's setting and +-5 deg) so that one lucky setting does not decide it:
   through      the heading crossed the wind and reached within 10 deg of the new course, upright
@@ -27,7 +27,7 @@ import numpy as np
 
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
-from ocean_warp.eboat.autopilot import HeadingAutopilot
+from ocean_warp.eboat.heading_autopilot import HeadingAutopilot
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.wind import WindConfig
 

@@ -1,18 +1,22 @@
 """Reinforcement-learning environments on the E-Boat simulator (installed as ``ocean_warp.envs``).
 
-- ``SailingEnv`` (``core``): N boats, one task, one captured decision step with same-step resets.
-- Tasks (``tasks``): ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours),
-  ``MissionConfig`` (the six-waypoint "BCDACA" mission) and ``MissionSailConfig`` (the mission with the
-  propeller off).
-- Interfaces: ``RslRlVecEnv`` (rsl-rl), ``SailingVectorEnv`` and ``SailingEnvSingle`` (gymnasium, with the
+At the top: ``SailingEnv`` (``sailing_env``: N boats, one task, one captured decision step with same-step
+resets) and the task ids (``registration``). By role, in subpackages (each ``__init__`` says what it holds):
+
+- ``tasks``: ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours), ``MissionConfig`` (the
+  six-waypoint "BCDACA" mission) and ``MissionSailConfig`` (the mission with the propeller off), and
+  their kernels.
+- ``interfaces``: ``RslRlVecEnv`` (rsl-rl), ``SailingVectorEnv`` and ``SailingEnvSingle`` (gymnasium, with the
   ids ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``, ``ocean_warp/EBoatMission-v0``
   and ``ocean_warp/EBoatMissionSail-v0``), ``Sb3VecEnv`` (stable-baselines3, an optional extra:
-  ``ocean_warp.envs.sb3_env``).
-- ``SailingAutopilot``: a classical sailing autopilot that runs any task in place of a policy.
+  ``ocean_warp.envs.interfaces.sb3_env``).
+- ``parallel``: environments over CPU worker processes. ``controllers``: ``SailingAutopilot``, a classical
+  sailing autopilot that runs any task in place of a policy. ``training``: PPO, checkpoints, the shipped
+  policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``.
 """
 
-from .core import EnvBuffers, SailingEnv, environment_origins
-from .tasks import (
+from .sailing_env import EnvBuffers, SailingEnv, environment_origins
+from .tasks.task_configs import (
     BCDACA_ROUTE,
     MISSION_WAYPOINTS,
     MissionConfig,
@@ -28,9 +32,9 @@ from .tasks import (
 __all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
            "MissionConfig", "MissionSailConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
 
-from .gym_env import SailingEnvSingle, SailingVectorEnv
+from .interfaces.gym_env import SailingEnvSingle, SailingVectorEnv
 from .registration import TASK_IDS, make_task_config, register_envs
-from .rsl_rl_env import RslRlVecEnv
+from .interfaces.rsl_rl_env import RslRlVecEnv
 
 __all__ += ["RslRlVecEnv", "SailingVectorEnv", "SailingEnvSingle", "TASK_IDS", "make_task_config", "register_envs"]
 

@@ -48,7 +48,7 @@ def task_name(task_id: str) -> str:
 def _default_config(task_id: str) -> Any:
     """The default config of a task id (with or without the namespace)."""
     name = task_name(task_id)
-    from . import tasks  # deferred: tasks pull in the simulator, registration must stay light
+    from .tasks import task_configs as tasks  # deferred: tasks pull in the simulator, registration must stay light
 
     return getattr(tasks, _CONFIG_CLASS_NAMES[name])()
 
@@ -85,7 +85,7 @@ def register_envs() -> None:
             continue
         gym.register(
             id=env_id,
-            entry_point="ocean_warp.envs.gym_env:SailingEnvSingle",
-            vector_entry_point="ocean_warp.envs.gym_env:SailingVectorEnv",
+            entry_point="ocean_warp.envs.interfaces.gym_env:SailingEnvSingle",
+            vector_entry_point="ocean_warp.envs.interfaces.gym_env:SailingVectorEnv",
             kwargs={"task": name},
         )

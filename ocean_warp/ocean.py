@@ -154,7 +154,7 @@ class Ocean:
         copies ``slots[cursor[0]]`` into this ocean's fields and adds 1 to ``cursor[0]``.
 
         For many oceans of one config that would each evaluate the same fields (the workers of
-        ``ocean_warp.envs.sharded``): one evaluates them into the slots with ``update(out=slots[k])``,
+        ``ocean_warp.envs.parallel.sharded``): one evaluates them into the slots with ``update(out=slots[k])``,
         the others copy them, bit for bit the same, at a fraction of the cost. The cursor lives on the
         device, so a captured graph reads whichever slot the cursor names when it is replayed.
 

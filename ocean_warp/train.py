@@ -18,7 +18,7 @@ from torch.distributed.elastic.multiprocessing.errors import record
 def main(argv: list[str] | None = None) -> int:
     import warp as wp
 
-    from ocean_warp.envs.training import main as train_main
+    from ocean_warp.envs.training.train_loop import main as train_main
 
     wp.config.log_level = wp.LOG_WARNING  # as ocean-warp does: no banner and module-load lines from every rank
 

@@ -1,4 +1,4 @@
-"""The classical sailing autopilot (ocean_warp.envs.autopilot): its decisions for hand-built states, its
+"""The classical sailing autopilot (ocean_warp.envs.controllers.sailing_autopilot): its decisions for hand-built states, its
 config checks, and physics-checked sailing (a beam reach, a dead-upwind beat, a short mission)."""
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ import warp as wp
 
 from benchmarks.autopilot_mission import run_mission
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics, Profile
-from ocean_warp.envs.autopilot import AutopilotConfig, SailingAutopilot
-from ocean_warp.envs.task_kernels import apply_actions
-from ocean_warp.envs.tasks import MissionConfig, mission_simulator
+from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
+from ocean_warp.envs.tasks.task_kernels import apply_actions
+from ocean_warp.envs.tasks.task_configs import MissionConfig, mission_simulator
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 from ocean_warp.wind import WindConfig
 

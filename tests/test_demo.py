@@ -10,8 +10,8 @@ import pytest
 from pxr import Usd, UsdGeom
 
 from ocean_warp import cli
-from ocean_warp.envs.demo import DemoConfig, run_demo
-from ocean_warp.envs.usd_export import ExportConfig, export_scenario
+from ocean_warp.envs.apps.demo import DemoConfig, run_demo
+from ocean_warp.envs.apps.usd_export import ExportConfig, export_scenario
 from ocean_warp.usd import validate_stage
 from ocean_warp.usd.paths import FLEET
 
@@ -110,7 +110,7 @@ def test_cli_help_and_bad_options(capsys, tmp_path):
 
 def test_ctrl_c_ends_a_command_with_one_line_and_code_130(monkeypatch, capsys):
     """Ctrl-C (KeyboardInterrupt) inside any job: exit status 130 and one line on stderr, no traceback."""
-    import ocean_warp.envs.demo as demo
+    import ocean_warp.envs.apps.demo as demo
 
     def interrupted(argv):
         raise KeyboardInterrupt

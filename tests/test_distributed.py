@@ -25,12 +25,12 @@ import pytest
 import torch
 
 from ocean_warp.envs import RslRlVecEnv, SailingEnv, WaypointConfig
-from ocean_warp.envs import training
-from ocean_warp.envs.agents import agent_config
-from ocean_warp.envs.distributed import RankContext, derived_seed, parameter_checksum, rank_device, rank_seed
-from ocean_warp.envs.distributed_launch import describe_failure, gpus_problem, launch, torchrun_command
-from ocean_warp.envs.policy_io import read_checkpoint
-from ocean_warp.envs.training import apply_overrides, train
+from ocean_warp.envs.training import train_loop as training
+from ocean_warp.envs.training.agents import agent_config
+from ocean_warp.envs.training.distributed import RankContext, derived_seed, parameter_checksum, rank_device, rank_seed
+from ocean_warp.envs.training.distributed_launch import describe_failure, gpus_problem, launch, torchrun_command
+from ocean_warp.envs.training.policy_io import read_checkpoint
+from ocean_warp.envs.training.train_loop import apply_overrides, train
 
 TINY = ["--task", "EBoatWaypoint-v0", "--device", "cpu", "--num-envs", "8", "--set", "steps_per_env=4",
         "--set", "save_interval=2", "--set", "train_task.episode_time=6.0", "--set", "ppo.hidden_dims=(16, 16)",

@@ -22,9 +22,9 @@ from gymnasium.vector import AutoresetMode
 from ocean_warp.eboat import Hydrostatics
 from ocean_warp.eboat.simulator_config import still_water
 from ocean_warp.envs import SailingEnv, WaypointConfig
-from ocean_warp.envs.gym_env import SailingEnvSingle, SailingVectorEnv
+from ocean_warp.envs.interfaces.gym_env import SailingEnvSingle, SailingVectorEnv
 from ocean_warp.envs.registration import TASK_IDS, register_envs
-from ocean_warp.envs.rsl_rl_env import RslRlVecEnv
+from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 
 START_DISTANCE_OBS = 2.0 * 100.0 / 125.0 - 1.0
 """Seed observation 0 at a start of the default waypoint task: waypoint 100 m away, lost at 100 + 25 m."""
@@ -319,7 +319,7 @@ def test_register_envs_is_idempotent():
 
 def test_sb3_vec_env_contract(device):
     pytest.importorskip("stable_baselines3")
-    from ocean_warp.envs.sb3_env import Sb3VecEnv
+    from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
 
     env = Sb3VecEnv(fast_config(), num_envs=4, device=device, max_episode_steps=3)
     env.seed(21)
@@ -350,7 +350,7 @@ def test_sb3_ppo_runs_updates(one_torch_thread):
     pytest.importorskip("stable_baselines3")
     from stable_baselines3 import PPO
 
-    from ocean_warp.envs.sb3_env import Sb3VecEnv
+    from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
 
     env = Sb3VecEnv(fast_config(), num_envs=8, seed=0, max_episode_steps=8)
     model = PPO("MlpPolicy", env, n_steps=16, batch_size=64, n_epochs=2, seed=0, device="cpu",
@@ -370,7 +370,7 @@ def test_envs_import_without_sb3():
         "import gymnasium, ocean_warp.envs\n"
         "assert 'ocean_warp/EBoatWaypoint-v0' in gymnasium.registry\n"
         "try:\n"
-        "    import ocean_warp.envs.sb3_env\n"
+        "    import ocean_warp.envs.interfaces.sb3_env\n"
         "except ImportError as error:\n"
         "    assert '.[sb3]' in str(error), error\n"
         "else:\n"

@@ -1,4 +1,4 @@
-"""``ocean-warp eval`` (ocean_warp.envs.evaluation): the path metrics on hand-made paths, a tiny evaluation of
+"""``ocean-warp eval`` (ocean_warp.envs.apps.evaluation): the path metrics on hand-made paths, a tiny evaluation of
 a random policy and the autopilot on the CPU, the command line, and the runner's decision against
 ``SailingEnv.step``."""
 
@@ -15,8 +15,9 @@ import torch
 
 from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
-from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv, policies
-from ocean_warp.envs.evaluation import (
+from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv
+from ocean_warp.envs.training import policies
+from ocean_warp.envs.apps.evaluation import (
     AutopilotController,
     FleetController,
     PolicyController,
@@ -27,7 +28,7 @@ from ocean_warp.envs.evaluation import (
     mission_task,
     sail_mission,
 )
-from ocean_warp.envs.mission_metrics import (
+from ocean_warp.envs.apps.mission_metrics import (
     cross_track_profile,
     cross_track_spread,
     leg_indices,
@@ -35,7 +36,7 @@ from ocean_warp.envs.mission_metrics import (
     path_length,
     wind_crossings,
 )
-from ocean_warp.envs.policy_io import build_actor, load_policy, save_checkpoint
+from ocean_warp.envs.training.policy_io import build_actor, load_policy, save_checkpoint
 from ocean_warp.ocean_config import OceanConfig
 
 DEG = math.pi / 180.0
@@ -455,7 +456,7 @@ def test_shipped_policy_path(monkeypatch):
 
 
 def test_benchmark_uses_the_runner(monkeypatch):
-    """benchmarks/autopilot_mission.py sails through ocean_warp.envs.evaluation (no loop of its own)."""
+    """benchmarks/autopilot_mission.py sails through ocean_warp.envs.apps.evaluation (no loop of its own)."""
     from benchmarks import autopilot_mission
 
     calls = []

@@ -19,10 +19,10 @@ from gymnasium.utils.env_checker import check_env
 
 from ocean_warp.eboat import EBoatConfig, Hydrostatics, Profile
 from ocean_warp.envs import MissionConfig, SailingEnv, TaskConfig, make_task_config
-from ocean_warp.envs.autopilot import AutopilotConfig
-from ocean_warp.envs.evaluation import AutopilotController
-from ocean_warp.envs.gym_env import SailingEnvSingle
-from ocean_warp.envs.tasks import BCDACA_ROUTE, MissionSailConfig
+from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig
+from ocean_warp.envs.apps.evaluation import AutopilotController
+from ocean_warp.envs.interfaces.gym_env import SailingEnvSingle
+from ocean_warp.envs.tasks.task_configs import BCDACA_ROUTE, MissionSailConfig
 from ocean_warp.ocean_config import OceanConfig
 
 SAIL_ID = "EBoatMissionSail-v0"

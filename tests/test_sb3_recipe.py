@@ -19,7 +19,7 @@ from stable_baselines3 import PPO  # noqa: E402
 
 from benchmarks import sb3_seed_recipe as recipe  # noqa: E402
 from ocean_warp.envs import WaypointConfig  # noqa: E402
-from ocean_warp.envs.sb3_env import Sb3VecEnv  # noqa: E402
+from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv  # noqa: E402
 
 SUMMARY_KEYS = {"steps", "num_envs", "train_wall_s", "success_rate", "mean_return", "episodes", "device"}
 QUICK_TASK = WaypointConfig(episode_time=20.0)

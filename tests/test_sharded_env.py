@@ -17,9 +17,9 @@ import torch
 from ocean_warp import WindConfig
 from ocean_warp.eboat import Hydrostatics
 from ocean_warp.envs import SailingEnv, StartConfig, WaypointConfig
-from ocean_warp.envs.gym_env import SailingVectorEnv
-from ocean_warp.envs.rsl_rl_env import RslRlVecEnv
-from ocean_warp.envs.sharded import ShardedSailingEnv, shard_bounds
+from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv
+from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
+from ocean_warp.envs.parallel.sharded import ShardedSailingEnv, shard_bounds
 from ocean_warp.sensors import SensorConfig
 
 COMPARED = ("policy_obs", "critic_obs", "final_policy_obs", "final_critic_obs", "reward", "terminated", "time_out",

@@ -12,10 +12,10 @@ import pytest
 import torch
 
 from ocean_warp.envs import WaypointConfig
-from ocean_warp.envs.evaluation import evaluate_mission
-from ocean_warp.envs.policies import shipped_policy_path
-from ocean_warp.envs.policy_io import Policy, build_actor, load_policy, read_checkpoint
-from ocean_warp.envs.task_evaluation import evaluate_task
+from ocean_warp.envs.apps.evaluation import evaluate_mission
+from ocean_warp.envs.training.policies import shipped_policy_path
+from ocean_warp.envs.training.policy_io import Policy, build_actor, load_policy, read_checkpoint
+from ocean_warp.envs.apps.success_rate import evaluate_task
 
 
 def _untrained_like(path) -> Policy:

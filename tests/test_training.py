@@ -13,9 +13,9 @@ import torch
 
 from ocean_warp.eboat.simulator_config import still_water
 from ocean_warp.envs import RslRlVecEnv, SailingEnv, WaypointConfig
-from ocean_warp.envs.agents import CurriculumConfig, PpoConfig, TrainConfig, agent_config
-from ocean_warp.envs.policy_io import CheckpointError, build_actor, load_policy, read_checkpoint, save_checkpoint
-from ocean_warp.envs.training import _Curriculum, apply_overrides, main, train
+from ocean_warp.envs.training.agents import CurriculumConfig, PpoConfig, TrainConfig, agent_config
+from ocean_warp.envs.training.policy_io import CheckpointError, build_actor, load_policy, read_checkpoint, save_checkpoint
+from ocean_warp.envs.training.train_loop import _Curriculum, apply_overrides, main, train
 
 
 

@@ -353,7 +353,7 @@ def _display_color(prim):
 def test_route_path_starts_at_the_start_and_buoys_are_solid(tmp_path):
     """BCDACA from A: the path is A B C D A C A (its first leg A-B included); one buoy per place, a mesh of
     the given size standing where the waypoint is, with a material."""
-    from ocean_warp.envs.tasks import BCDACA_ROUTE
+    from ocean_warp.envs.tasks.task_configs import BCDACA_ROUTE
 
     path = tmp_path / "route.usda"
     with StageRecorder(path, fps=1.0, route=BCDACA_ROUTE, route_labels="BCDACA", route_start=(0.0, 0.0)):
@@ -549,7 +549,7 @@ def test_per_frame_ocean_has_its_first_frame_as_default(tmp_path):
 
 
 def test_export_usd_refuses_a_bad_out_before_making_anything(tmp_path, capsys, monkeypatch):
-    from ocean_warp.envs import usd_export
+    from ocean_warp.envs.apps import usd_export
 
     monkeypatch.chdir(tmp_path)
     for out in ("x.txt", "new/folder/x.txt", "new/x.usdc.bak", "new/x"):

@@ -17,10 +17,10 @@ import math
 import numpy as np
 import warp as wp
 
-from ..kernels.autopilot import accumulate_course_keeping
+from ocean_warp.kernels.heading_hold import accumulate_course_keeping
 from ..replay import ReplayedLaunches
 from ..wind import WindConfig
-from .autopilot import HeadingAutopilot
+from .heading_autopilot import HeadingAutopilot
 from .eboat import EBoatConfig
 from .simulator import EBoatSimulator
 from .simulator_config import EBoatSimulatorConfig

@@ -129,7 +129,7 @@ class EBoatSimulator:
         existing :class:`Ocean` to share instead of building ``config.ocean`` (its gravity must match);
         ``first_boat``: this batch is boats [first_boat, first_boat + count) of a larger one with the same
         config: each boat gets that boat's mass variant and its gust and sensor-noise random streams (a
-        shard of a batch, as ``ocean_warp.envs.sharded`` runs one per process, sails like the batch)."""
+        shard of a batch, as ``ocean_warp.envs.parallel.sharded`` runs one per process, sails like the batch)."""
         self.config = config if config is not None else EBoatSimulatorConfig()
         if not isinstance(self.config, EBoatSimulatorConfig):
             raise ValueError(f"EBoatSimulator: config must be an EBoatSimulatorConfig, got {self.config!r}")

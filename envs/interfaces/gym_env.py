@@ -22,9 +22,9 @@ import torch
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
-from .core import SailingEnv
-from .sharded import ShardedSailingEnv
-from .registration import make_task_config
+from ..sailing_env import SailingEnv
+from ..parallel.sharded import ShardedSailingEnv
+from ..registration import make_task_config
 
 __all__ = ["SailingVectorEnv", "SailingEnvSingle", "action_space", "observation_space", "to_numpy", "as_actions",
            "build_sailing_env"]

@@ -47,10 +47,10 @@ import warp as wp
 from ocean_warp.validation import require_int_in_range
 
 from ocean_warp.devices import init_warp
-from .core import EnvBuffers, SailingEnv, episode_log
+from ..sailing_env import EnvBuffers, SailingEnv, episode_log
 from .shared_ocean import SharedOcean, ocean_updates_per_decision
-from .task_kernels import POLICY_OBS, PRIVILEGED_OBS
-from .tasks import ObservationSet, TaskConfig
+from ..tasks.task_kernels import POLICY_OBS, PRIVILEGED_OBS
+from ..tasks.task_configs import ObservationSet, TaskConfig
 
 __all__ = ["ShardedSailingEnv", "shard_bounds"]
 
@@ -397,7 +397,7 @@ class ShardedSailingEnv:
         return height
 
     def episode_log(self) -> dict[str, torch.Tensor]:
-        """Statistics of the episodes that ended in the last step (see :func:`ocean_warp.envs.core.episode_log`)."""
+        """Statistics of the episodes that ended in the last step (see :func:`ocean_warp.envs.sailing_env.episode_log`)."""
         return episode_log(self.buffers)
 
     # --- life cycle ------------------------------------------------------------------------------------

@@ -25,11 +25,11 @@ from ocean_warp.usd.recorder import TIME_CODES_PER_SECOND
 from ocean_warp.usd.stage_file import check_stage_path
 from ocean_warp.validation import require_in_range, require_positive
 
-from .core import SailingEnv
+from ..sailing_env import SailingEnv
 from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
 from .evaluation import AutopilotController, PolicyController, RecordedDecision
-from .policies import shipped_policy_path
-from .policy_io import CheckpointError, load_policy
+from ..training.policies import shipped_policy_path
+from ..training.policy_io import CheckpointError, load_policy
 
 __all__ = ["ExportConfig", "FixedController", "export_scenario", "main"]
 

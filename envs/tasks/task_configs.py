@@ -1,7 +1,7 @@
 """Sailing tasks as configs: the seed paper's waypoint task, our Waypoint+, the BCDACA mission, and the
 mission under sail alone.
 
-A task is this config plus the kernels of ``ocean_warp.envs.task_kernels``; ``SailingEnv`` runs any of
+A task is this config plus the kernels of ``ocean_warp.envs.tasks.task_kernels``; ``SailingEnv`` runs any of
 them. Every task has the same three actions, each in [-1, 1] (the seed's):
 
     a0  propeller level int(5 a0), truncated toward zero (-5 ... +5); ignored (level 0) by a task

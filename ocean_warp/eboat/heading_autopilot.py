@@ -7,8 +7,8 @@ import math
 import numpy as np
 import warp as wp
 
-from ..kernels.autopilot import HeadingGains, hold_heading
-from ..validation import require_per_item
+from ocean_warp.kernels.heading_hold import HeadingGains, hold_heading
+from ocean_warp.validation import require_per_item
 
 __all__ = ["HeadingAutopilot"]
 

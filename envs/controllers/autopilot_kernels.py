@@ -1,4 +1,4 @@
-"""Kernels of the classical sailing autopilot (``ocean_warp.envs.autopilot``): one thread per boat.
+"""Kernels of the classical sailing autopilot (``ocean_warp.envs.controllers.sailing_autopilot``): one thread per boat.
 
 Each decision, a boat picks a course to its target and turns it into normalised actions:
 

@@ -22,7 +22,7 @@ from ocean_warp.cli_support import job_parser, plural, report_error
 from ocean_warp.devices import resolve_device
 from ocean_warp.validation import require_in_range, require_positive
 
-from .core import SailingEnv
+from ..sailing_env import SailingEnv
 from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
 from .evaluation import (
     AutopilotController,
@@ -31,8 +31,8 @@ from .evaluation import (
     PolicyController,
     sail_mission,
 )
-from .policies import shipped_policy_path
-from .policy_io import load_policy
+from ..training.policies import shipped_policy_path
+from ..training.policy_io import load_policy
 
 __all__ = ["DemoConfig", "DemoResult", "demo_task", "run_demo", "main"]
 

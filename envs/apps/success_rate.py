@@ -1,13 +1,13 @@
 """How well a policy does on a task: the first episode of each of N seeded environments, sailed to its end.
 
-    from ocean_warp.envs.task_evaluation import evaluate_task
+    from ocean_warp.envs.apps.success_rate import evaluate_task
     result = evaluate_task(load_policy("policy.pt"), WaypointConfig(), episodes=256, seed=1000)
     result.success_rate, result.mean_return, result.mean_length_s
 
 Counting only each environment's first episode (every environment starts fresh from a seeded reset)
 keeps the estimate unbiased: counting "the first N episodes to end" would favour short ones, i.e.
 quick successes and quick failures. The mission has its own, richer evaluation
-(:mod:`ocean_warp.envs.evaluation`).
+(:mod:`ocean_warp.envs.apps.evaluation`).
 """
 
 from __future__ import annotations
@@ -17,9 +17,9 @@ from dataclasses import dataclass
 import numpy as np
 import torch
 
-from .core import SailingEnv
-from .policy_io import Policy
-from .tasks import ObservationSet
+from ..sailing_env import SailingEnv
+from ..training.policy_io import Policy
+from ..tasks.task_configs import ObservationSet
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,7 @@ def evaluate_task(policy: Policy, task, *, episodes: int = 256, seed: int = 1000
     """Sail ``policy`` (deterministic) in ``episodes`` environments of ``task`` until each has ended once.
 
     Args:
-        policy: an exported policy (:func:`ocean_warp.envs.policy_io.load_policy`); its observation must
+        policy: an exported policy (:func:`ocean_warp.envs.training.policy_io.load_policy`); its observation must
             be the task's.
         task: a task config (``WaypointConfig()``, ...).
         episodes: number of environments, hence of episodes.

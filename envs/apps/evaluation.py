@@ -20,7 +20,7 @@ Every controller sails the SAME runs: the same task and environment seed, so the
 starts and waypoints. A run's path is recorded from the start to the end of its first episode (the pose
 after the physics of the last decision, before the environment resets the run).
 
-The policy is --policy PATH, else the task's shipped policy (``ocean_warp.envs.policies``); for a task
+The policy is --policy PATH, else the task's shipped policy (``ocean_warp.envs.training.policies``); for a task
 that has none (EBoatWaypointPlus-v0) eval says so in one line and sails the autopilot alone. On a task
 without propeller (EBoatMissionSail-v0: ``TaskConfig.propeller`` False) the autopilot sails without motor
 assist (``AutopilotConfig.sail_only()``), and the environment ignores any controller's propeller command
@@ -49,7 +49,7 @@ Columns of results.csv:
                         from the recorded headings, for every controller alike (mean over all runs): a
                         tack when the true wind's source crosses the bow, a gybe when it crosses the
                         stern, counted once the heading has settled 10 deg past the wind axis on the new
-                        side (envs/mission_metrics.py: wind_crossings)
+                        side (envs/apps/mission_metrics.py: wind_crossings)
   cross_track_spread_m  how consistent the paths are [m]: on each leg (from the run's start or previous
                         waypoint to its next, each run's own), every run that completed the leg is
                         resampled at 50 points equally spaced in along-track distance (where the path first
@@ -94,13 +94,13 @@ from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
-from .autopilot import AutopilotConfig, SailingAutopilot
-from .core import SailingEnv
+from ..controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
+from ..sailing_env import SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
-from .policy_io import CheckpointError, Policy, load_policy
-from .registration import TASK_IDS, make_task_config, task_name
-from .tasks import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
+from ..training.policy_io import CheckpointError, Policy, load_policy
+from ..registration import TASK_IDS, make_task_config, task_name
+from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
 __all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
            "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "DEFAULT_TASK", "evaluation_task",
@@ -132,7 +132,7 @@ class Controller(Protocol):
 
 
 class PolicyController:
-    """A trained :class:`~ocean_warp.envs.policy_io.Policy`: actions = policy(env.buffers.policy_obs)."""
+    """A trained :class:`~ocean_warp.envs.training.policy_io.Policy`: actions = policy(env.buffers.policy_obs)."""
 
     def __init__(self, policy: Policy, name: str = "policy"):
         if not isinstance(policy, Policy):
@@ -154,7 +154,7 @@ class PolicyController:
 
 
 class AutopilotController:
-    """The classical :class:`~ocean_warp.envs.autopilot.SailingAutopilot` (``config`` None: its defaults)
+    """The classical :class:`~ocean_warp.envs.controllers.sailing_autopilot.SailingAutopilot` (``config`` None: its defaults)
     sailing to each run's current waypoint. It forgets a run's tack side, integrator and counters when the
     run starts a new episode (``env.reset_mask`` of the last step). On a task without propeller
     (``TaskConfig.propeller`` False) it sails without the motor: its config's ``assist_level`` and
@@ -768,7 +768,7 @@ def _parser() -> argparse.ArgumentParser:
                              f"(default {DEFAULT_TASK})")
     parser.add_argument("--policy", default=None, metavar="PATH",
                         help="policy checkpoint to evaluate (default: the task's shipped policy, where it has one, "
-                             "in ocean_warp/envs/policies/)")
+                             "in envs/training/policies/)")
     parser.add_argument("--no-policy", action="store_true", help="sail the autopilot only")
     parser.add_argument("--no-autopilot", action="store_true", help="sail the policy only")
     parser.add_argument("--runs", type=int, default=20,
@@ -809,7 +809,7 @@ def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name:
     """The policy to sail on task ``name``: --policy, else the task's shipped one. None, said in one line,
     where the task has none (the autopilot sails alone); exits with status 2 on an unusable checkpoint, or
     when there is no policy and --no-autopilot leaves nothing to run."""
-    from .policies import shipped_policy_path
+    from ..training.policies import shipped_policy_path
 
     path = args.policy
     if path is None:

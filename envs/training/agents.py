@@ -15,8 +15,8 @@ from typing import Any
 
 from ocean_warp.validation import require_in_range, require_int_in_range, require_positive
 
-from .registration import make_task_config
-from .tasks import MissionConfig, MissionSailConfig, StartConfig, TaskConfig, WaypointPlusConfig
+from ..registration import make_task_config
+from ..tasks.task_configs import MissionConfig, MissionSailConfig, StartConfig, TaskConfig, WaypointPlusConfig
 
 __all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice"]
 

@@ -1,4 +1,4 @@
-"""Policies shipped with ocean_warp: exported checkpoints (``ocean_warp.envs.policy_io``) beside this file."""
+"""Policies shipped with ocean_warp: exported checkpoints (``ocean_warp.envs.training.policy_io``) beside this file."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""One ocean evaluated for all the workers of a :class:`~ocean_warp.envs.sharded.ShardedSailingEnv`.
+"""One ocean evaluated for all the workers of a :class:`~ocean_warp.envs.parallel.sharded.ShardedSailingEnv`.
 
 Every worker's ocean would evaluate the same fields at the same times: the sea does not depend on the
 boats. With the four-point hull that evaluation (20 updates of a 64² grid a decision in the seed task)
@@ -22,7 +22,7 @@ from ocean_warp.kernels.rigid_body import advance_time
 from ocean_warp.ocean import Ocean
 from ocean_warp.replay import ReplayedLaunches
 
-from .tasks import TaskConfig
+from ..tasks.task_configs import TaskConfig
 
 __all__ = ["SharedOcean", "ocean_updates_per_decision"]
 

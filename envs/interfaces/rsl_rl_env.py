@@ -1,6 +1,6 @@
 """The rsl-rl face of the batched sailing simulator: :class:`RslRlVecEnv` (``rsl_rl.env.VecEnv``).
 
-A thin adapter over one :class:`~ocean_warp.envs.core.SailingEnv`; it never loops over environments.
+A thin adapter over one :class:`~ocean_warp.envs.sailing_env.SailingEnv`; it never loops over environments.
 Rewards, dones, time-outs and the episode counter are the env's Warp-backed torch views, handed out
 as they are (zero copy). Observations are the one exception, and deliberately so: rsl-rl's PPO keeps
 the observation TensorDict it acted on (``PPO.act``) and copies it into its rollout storage only in
@@ -17,8 +17,8 @@ import torch
 from rsl_rl.env import VecEnv
 from tensordict import TensorDict
 
-from .core import SailingEnv
-from .sharded import ShardedSailingEnv
+from ..sailing_env import SailingEnv
+from ..parallel.sharded import ShardedSailingEnv
 
 __all__ = ["RslRlVecEnv"]
 

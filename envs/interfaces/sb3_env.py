@@ -25,11 +25,11 @@ try:
     from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvObs, VecEnvStepReturn
 except ImportError as error:  # pragma: no cover - depends on the installed extras
     raise ImportError(
-        "ocean_warp.envs.sb3_env needs Stable-Baselines3, an optional extra: "
+        "ocean_warp.envs.interfaces.sb3_env needs Stable-Baselines3, an optional extra: "
         'pip install -e ".[sb3]"  (or: pip install stable-baselines3)'
     ) from error
 
-from .core import SailingEnv
+from ..sailing_env import SailingEnv
 from .gym_env import as_actions, build_sailing_env, action_space, observation_space, to_numpy
 
 __all__ = ["Sb3VecEnv"]

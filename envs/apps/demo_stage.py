@@ -15,8 +15,8 @@ import numpy as np
 
 from ocean_warp.usd import StageRecorder, render_preview, validate_stage
 
-from .core import SailingEnv
-from .tasks import mission_waypoint_name
+from ..sailing_env import SailingEnv
+from ..tasks.task_configs import mission_waypoint_name
 
 __all__ = ["MissionStageRecorder"]
 

@@ -23,7 +23,7 @@ own (rank r's are environments [r N, (r + 1) N) of one batch), rsl-rl averages t
 normalisers, and one small collective per iteration sums the episode statistics (the curriculum moves
 on all ranks' episodes, alike everywhere) and stops every rank when one failed. Rank 0 alone writes, and
 adds ``distributed.json`` (every rank's checksum of its networks at the end, checked equal). See
-``ocean_warp.envs.distributed``.
+``ocean_warp.envs.training.distributed``.
 """
 
 from __future__ import annotations
@@ -54,7 +54,7 @@ from ocean_warp.cli_support import finite_above, job_parser, option_problem, plu
 from ocean_warp.devices import resolve_device
 
 from .agents import TrainConfig, agent_config
-from .core import SailingEnv
+from ..sailing_env import SailingEnv
 from .distributed import (
     DEFAULT_TIMEOUT_S,
     DistributedRunner,
@@ -70,8 +70,8 @@ from .distributed import (
 )
 from .distributed_launch import gpus_problem, launch, torchrun_command, visible_gpus
 from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
-from .rsl_rl_env import RslRlVecEnv
-from .sharded import ShardedSailingEnv
+from ..interfaces.rsl_rl_env import RslRlVecEnv
+from ..parallel.sharded import ShardedSailingEnv
 
 __all__ = ["train", "TrainResult", "apply_overrides", "main"]
 
@@ -638,7 +638,7 @@ def _parser() -> argparse.ArgumentParser:
                         help="CPU only: simulate the environments in this many processes, one core each "
                         "(default 1: in this process)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
-    ranks = parser.add_argument_group("several GPUs (torchrun; see ocean_warp.envs.distributed)")
+    ranks = parser.add_argument_group("several GPUs (torchrun; see ocean_warp.envs.training.distributed)")
     ranks.add_argument("--gpus", default=None, metavar="G",
                        help="train one policy on G GPUs of this host: starts torchrun with G ranks, each with "
                        "--num-envs environments on its own GPU (default: this process, one device)")

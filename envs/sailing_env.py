@@ -24,7 +24,7 @@ from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
-from .task_kernels import (
+from .tasks.task_kernels import (
     POLICY_OBS,
     PRIVILEGED_OBS,
     StartDistribution,
@@ -34,7 +34,7 @@ from .task_kernels import (
     evaluate,
     observe,
 )
-from .tasks import ObservationSet, TaskConfig
+from .tasks.task_configs import ObservationSet, TaskConfig
 
 __all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "episode_log"]
 
@@ -109,7 +109,7 @@ class SailingEnv:
     def __init__(self, task: TaskConfig, num_envs: int, *, device=None, seed: int = 0, first_env: int = 0):
         """``first_env``: this batch is environments [first_env, first_env + num_envs) of a larger one with
         the same task and seed, and sails exactly as they would there: their origins, start draws, mass
-        variants, gusts and sensor noise (a shard of a batch; ``ocean_warp.envs.sharded`` runs one per
+        variants, gusts and sensor noise (a shard of a batch; ``ocean_warp.envs.parallel.sharded`` runs one per
         process)."""
         if not isinstance(task, TaskConfig):
             raise ValueError(f"SailingEnv: task must be a TaskConfig (WaypointConfig, ...), got {task!r}")
