@@ -44,7 +44,7 @@ HEEL = math.radians(2.0)
 POLAR_ANGLES_DEG = (45.0, 60.0, 90.0, 120.0, 150.0)
 POLAR_SHEETS_DEG = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0)
 TOLERANCES = ((1000, 0.015, 0.01), (500, 0.04, 0.015), (250, 0.10, 0.07))
-"""(smallest budget, rest draft, GM): the relative errors against the full hull that tests/test_coarse_hulls.py
+"""(smallest budget, rest draft, GM): the relative errors against the full hull that tests/ocean_warp/test_coarse_hulls.py
 allows a hull of at least that many triangles; this benchmark measured (2026-11-23) 0.6 and 0.1 % at 1 024,
 2.2 and 0.3 % at 512, 7.1 and 4.4 % at 256 (2 048 gives the full hull)."""
 
@@ -285,7 +285,7 @@ def report(rows: list[Fidelity], full: Fidelity, seconds: float) -> str:
         f"theorem on the clipped submerged part). GM at {math.degrees(HEEL):.0f} deg of heel; periods from free decay",
         "(3 cm heave, 4 deg heel); R: the hull pass at 1 m/s, upright at rest height; " + polar + ".", "",
         table(rows, full), "",
-        "Tolerances held by tests/test_coarse_hulls.py (relative error against the full hull, both from the numpy "
+        "Tolerances held by tests/ocean_warp/test_coarse_hulls.py (relative error against the full hull, both from the numpy "
         "hydrostatics): " + "; ".join(f"budget >= {smallest}: rest draft {100 * draft:.1f} %, GM {100 * gm:.1f} %"
                                         for smallest, draft, gm in TOLERANCES) + ".", ""])
 

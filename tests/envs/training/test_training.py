@@ -155,7 +155,7 @@ def test_bad_checkpoints_give_clear_errors(tmp_path):
 def test_train_command_reports_a_bad_resume_without_a_traceback(tmp_path, capsys):
     """--resume with anything but an ocean_warp checkpoint: one line naming the file and saying it is not one,
     exit status 2, never torch's advice to load unsafely, no run folder."""
-    from tests.test_evaluation import unusable_checkpoints
+    from tests.envs.apps.test_evaluation import unusable_checkpoints
 
     for name, message in unusable_checkpoints(tmp_path).items():
         path = str(tmp_path / name)

@@ -5,15 +5,14 @@ way made dead into the wind."""
 
 import csv
 import math
-import os
 
 import numpy as np
 import pytest
 
 from ocean_warp.eboat.polar import speed_polar
+from tests.paths import BENCHMARK_DATA
 
-VPP = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "benchmarks", "data", "mesh_hull",
-                   "vpp_reference_polar.csv")
+VPP = BENCHMARK_DATA / "mesh_hull" / "vpp_reference_polar.csv"
 
 
 def _vpp(tws: float) -> dict[float, float]:

@@ -1,0 +1,1 @@
+"""Tests of ``ocean_warp.envs.parallel``."""
