@@ -9,7 +9,7 @@ gybes when it lies dead downwind (deeper than ``run_angle``), the sheet trimmed 
 wind angle (eased when the boat heels), and the rudder from a PI heading controller with yaw-rate
 damping; the motor assists on beats, through turns and when the boat has too little way on. The
 kernels are in ``ocean_warp.envs.controllers.autopilot_kernels``. The defaults were tuned on the BCDACA mission
-(mesh hull, 10 m/s gusty wind, 0.3 m sea; ``benchmarks/autopilot_mission.py``): under sail alone the
+(mesh hull, 10 m/s gusty wind, 0.3 m sea; ``benchmarks/studies/autopilot_mission.py``): under sail alone the
 E-Boat makes 0.2-0.3 m/s to windward there and fails most tacks (lee helm, little way on), and it
 completed none of 20 missions; with the motor assisting on beats it completes them.
 

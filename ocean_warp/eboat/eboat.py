@@ -83,7 +83,7 @@ class EBoatConfig:
     """Triangle budget of the physics hull (at least 40): the same shape meshed with fewer or more stations
     and section points (:meth:`HullShape.with_triangle_budget`), for speed over detail; None (default):
     ``hull_shape`` as it is (2 024 triangles). With a budget, ``hull_shape`` must keep the default
-    resolution, which the budget replaces. ``benchmarks/hull_fidelity.py`` measures what a budget costs."""
+    resolution, which the budget replaces. ``benchmarks/studies/hull_fidelity.py`` measures what a budget costs."""
 
     def __post_init__(self):
         object.__setattr__(self, "version", require_choice("EBoatConfig", "version", self.version, Version))

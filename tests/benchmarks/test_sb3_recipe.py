@@ -1,4 +1,4 @@
-"""The seed paper's SB3 recipe (benchmarks/sb3_seed_recipe.py): its hyperparameters, its success count, a tiny run.
+"""The seed paper's SB3 recipe (benchmarks/studies/sb3_seed_recipe.py): its hyperparameters, its success count, a tiny run.
 
 The hyperparameters are checked against the seed's numbers written out here, read off the built PPO
 object and its networks. Success counting is checked on tasks whose outcome is known beforehand: a
@@ -17,7 +17,7 @@ pytest.importorskip("stable_baselines3")
 
 from stable_baselines3 import PPO  # noqa: E402
 
-from benchmarks import sb3_seed_recipe as recipe  # noqa: E402
+from benchmarks.studies import sb3_seed_recipe as recipe  # noqa: E402
 from ocean_warp.envs import WaypointConfig  # noqa: E402
 from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv  # noqa: E402
 

@@ -2,8 +2,8 @@
 hull's hydrostatics to stated tolerances.
 
 Tolerances (relative error against the full hull, both from an independent numpy hydrostatics of the mesh,
-``benchmarks.hull_fidelity.displacement``: the clipped submerged volume by the divergence theorem; not the
-Warp hull pass under test), from ``benchmarks/hull_fidelity.py``'s measurements with margin:
+``benchmarks.studies.hull_fidelity.displacement``: the clipped submerged volume by the divergence theorem; not the
+Warp hull pass under test), from ``benchmarks/studies/hull_fidelity.py``'s measurements with margin:
 
     budget >= 1 000: rest draft 1.5 %, GM 1 %     (measured 0.6 %, 0.1 % at 1 024)
     budget >=   500: rest draft 4 %,   GM 1.5 %   (measured 2.2 %, 0.3 % at 512)
@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import ocean_warp as ow
-from benchmarks.hull_fidelity import equilibrium_height, numpy_hydrostatics, tolerances
+from benchmarks.studies.hull_fidelity import equilibrium_height, numpy_hydrostatics, tolerances
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull, triangle_count
 from tests.hull_setups import assert_afloat_upright, rotation_matrix, settled_heights

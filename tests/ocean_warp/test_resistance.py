@@ -1,7 +1,7 @@
 """Forward resistance: the hull form measured on meshes against analytic solids, friction and residuary
 resistance in the hull pass against the formulas worked by hand, and the upright resistance of the
 E-Boat against an independent VPP's (python-vpp, ORC surfaces read as labelled, run on the same hull's
-particulars: benchmarks/vpp_reference.py)."""
+particulars: benchmarks/references/vpp_reference.py)."""
 
 import csv
 import dataclasses

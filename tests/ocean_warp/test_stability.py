@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from benchmarks.stability import steady_heels
+from benchmarks.studies.righting_arm import steady_heels
 from ocean_warp.eboat import EBoat
 from ocean_warp.hull import Hull
 from ocean_warp.hull_form import floating_waterline

@@ -456,8 +456,8 @@ def test_shipped_policy_path(monkeypatch):
 
 
 def test_benchmark_uses_the_runner(monkeypatch):
-    """benchmarks/autopilot_mission.py sails through ocean_warp.envs.apps.evaluation (no loop of its own)."""
-    from benchmarks import autopilot_mission
+    """benchmarks/studies/autopilot_mission.py sails through ocean_warp.envs.apps.evaluation (no loop of its own)."""
+    from benchmarks.studies import autopilot_mission
 
     calls = []
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import warp as wp
 
-from benchmarks.autopilot_mission import run_mission
+from benchmarks.studies.autopilot_mission import run_mission
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics, Profile
 from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
 from ocean_warp.envs.tasks.task_kernels import apply_actions
@@ -247,7 +247,7 @@ def test_sail_only_beat_on_the_physics_boat(device):
 
 def test_two_full_missions(device):
     """Two seeded runs of the whole BCDACA mission in waves and gusts, with the mesh hull, through the
-    mission environment, as ``benchmarks/autopilot_mission.py`` sails its twenty (about 600 s each), on
+    mission environment, as ``benchmarks/studies/autopilot_mission.py`` sails its twenty (about 600 s each), on
     the boat the defaults were tuned on (on the physics boat they capsize in 10 m/s: RESULTS)."""
     task = dataclasses.replace(MissionConfig(), simulator=mission_simulator(TUNING_BOAT))
     result = run_mission(2, device=device, seed=3, task=task)

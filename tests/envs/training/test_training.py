@@ -244,9 +244,9 @@ def test_cli_help(job):
 
 
 def test_multi_gpu_benchmark_table_without_a_one_gpu_run():
-    """``benchmarks/multi_gpu_bench.py --gpus 2`` alone has no one-GPU baseline: speed-up and efficiency read
+    """``benchmarks/perf/multi_gpu_bench.py --gpus 2`` alone has no one-GPU baseline: speed-up and efficiency read
     "n/a" (they once read "nanx" and "nan%"); with one, they are against it."""
-    from benchmarks.multi_gpu_bench import format_table
+    from benchmarks.perf.multi_gpu_bench import format_table
 
     def row(gpus, rate):
         return {"gpus": gpus, "iterations": 10, "samples": 2e6, "collect_decisions_per_s": rate,

@@ -1,7 +1,7 @@
 """Check training on several GPUs end to end, on a host with G GPUs (G = 1 runs what one GPU allows).
 
-    python -m benchmarks.multi_gpu_check --gpus 2
-    python -m benchmarks.multi_gpu_check --gpus 1          # one GPU: in-process training, the failure cases
+    python -m benchmarks.perf.multi_gpu_check --gpus 2
+    python -m benchmarks.perf.multi_gpu_check --gpus 1          # one GPU: in-process training, the failure cases
 
 Each case is a real command, a tiny setting of the waypoint task (``--num-envs`` per GPU, 8 decisions
 each, 4 iterations, checkpoints every 2):

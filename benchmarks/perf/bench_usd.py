@@ -5,7 +5,7 @@ a mesh per frame or one seamless loop, with one prim per boat or point instancer
 seconds per frame, the stage's and the loop's sizes [MiB], and the process's resident memory after a
 quarter of the frames and at the end (flat memory means samples leave for the file as they come).
 
-    python benchmarks/bench_usd.py --device cpu --frames 400
+    python -m benchmarks.perf.bench_usd --device cpu --frames 400
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Learning curves of training runs: mean return and success rate against wall time and against samples.
 
-    python benchmarks/learning_curves.py runs/EBoatWaypoint-v0/<run> runs/EBoatWaypointPlus-v0/<run> \
+    python -m benchmarks.studies.learning_curves runs/EBoatWaypoint-v0/<run> runs/EBoatWaypointPlus-v0/<run> \
         --labels Waypoint Waypoint+ --out benchmarks/figures/learning_curves.png
 
 Each run folder holds the ``progress.csv`` that ``ocean-warp train`` writes (one row per PPO iteration:
@@ -14,13 +14,11 @@ import argparse
 import csv
 import json
 import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from ocean_warp.atomic_files import atomic_output  # noqa: E402
+from ocean_warp.atomic_files import atomic_output
 
 
 def read_progress(run_dir: str) -> dict[str, np.ndarray]:

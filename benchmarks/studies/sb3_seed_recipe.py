@@ -1,7 +1,7 @@
 """The seed paper's own recipe: Stable-Baselines3 PPO on the seed waypoint task, for comparison.
 
-    python benchmarks/sb3_seed_recipe.py                            # the seed: 1 boat, 512 000 steps, CPU
-    python benchmarks/sb3_seed_recipe.py --device cuda:0 --num-envs 16 --out out/sb3_seed_16
+    python -m benchmarks.studies.sb3_seed_recipe                            # the seed: 1 boat, 512 000 steps, CPU
+    python -m benchmarks.studies.sb3_seed_recipe --device cuda:0 --num-envs 16 --out out/sb3_seed_16
 
 PPO exactly as the seed paper trained it (README of the E-Boat twin, "The reinforcement-learning task
 of the seed paper"): ``MlpPolicy`` with separate policy and value MLPs [32, 32], ReLU; learning rate
@@ -24,7 +24,6 @@ import json
 import logging
 import math
 import os
-import sys
 import time
 from typing import Any
 
@@ -32,15 +31,14 @@ import numpy as np
 import torch
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from stable_baselines3 import PPO  # noqa: E402
-from stable_baselines3.common.callbacks import BaseCallback  # noqa: E402
-from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper  # noqa: E402
-from tqdm import tqdm  # noqa: E402
+from stable_baselines3 import PPO
+from stable_baselines3.common.callbacks import BaseCallback
+from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
+from tqdm import tqdm
 
-from ocean_warp.atomic_files import atomic_output  # noqa: E402
-from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv  # noqa: E402
+from ocean_warp.atomic_files import atomic_output
+from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
 
 TASK_ID = "EBoatWaypoint-v0"
 """The seed paper's waypoint task (``WaypointConfig()``)."""

@@ -1,7 +1,7 @@
 """Fidelity of the E-Boat's hull at a triangle budget, against the full hull (2 024 triangles).
 
-    python benchmarks/hull_fidelity.py --budgets 256 512 1024 2048 --out scratch/hull_fidelity.md
-    python benchmarks/hull_fidelity.py --no-polar          # the hydrostatics and periods only (seconds)
+    python -m benchmarks.studies.hull_fidelity --budgets 256 512 1024 2048 --out scratch/hull_fidelity.md
+    python -m benchmarks.studies.hull_fidelity --no-polar          # the hydrostatics and periods only (seconds)
 
 Each budget's hull (``EBoatConfig(hull_triangles=budget)``: the same procedure, fewer stations and section
 points) and the full hull are measured on the CPU with the simulator:
@@ -25,19 +25,16 @@ import dataclasses
 import datetime
 import logging
 import math
-import os
-import sys
 
 import numpy as np
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-import ocean_warp as ow  # noqa: E402
-from ocean_warp.atomic_files import atomic_output  # noqa: E402
-from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
-from ocean_warp.eboat.polar import speed_polar  # noqa: E402
-from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw  # noqa: E402
+import ocean_warp as ow
+from ocean_warp.atomic_files import atomic_output
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat.polar import speed_polar
+from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 
 HEEL = math.radians(2.0)
 """Heel of the GM measurements [rad]: small, so GZ / sin(heel) is GM to within (BM / 2) tan^2 = 0.1 %."""

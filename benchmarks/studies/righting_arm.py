@@ -1,7 +1,7 @@
 """The E-Boat's righting-arm (GZ) curve from its hull mesh, against the VPP input's and the simulator's heel.
 
-    python -m benchmarks.stability                      # CPU, about 10 s
-    python -m benchmarks.stability --seconds 90 --moments 10 40 80 120
+    python -m benchmarks.studies.righting_arm                      # CPU, about 10 s
+    python -m benchmarks.studies.righting_arm --seconds 90 --moments 10 40 80 120
 
 1. GZ of the canoe-body mesh (``EBoat().hull``) at 0-90 deg of heel in 5 deg steps, free in heave and
    trim (``ocean_warp.stability``): exact clipping at the still-water plane, the centre of buoyancy by the
@@ -39,8 +39,8 @@ from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.hull_form import floating_waterline
 from ocean_warp.stability import RightingArmCurve, equilibrium_heel, righting_arm_curve
 from ocean_warp.wind import WindConfig
+from benchmarks import REPO, DATA, FIGURES
 
-REPO = Path(__file__).resolve().parents[1]
 DEFAULT_VPP_INPUTS = REPO.parent / "shared" / "eboat" / "vpp_inputs.json"
 HEELS_DEG = np.arange(0.0, 90.0 + 1e-9, 5.0)
 MOMENTS = (20.0, 50.0, 100.0, 130.0, 150.0)
@@ -218,8 +218,8 @@ def print_tables(curve, heave_only, vpp, gm: float, steady, predicted) -> None:
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    parser.add_argument("--out", type=Path, default=REPO / "benchmarks" / "figures", help="folder of the figure")
-    parser.add_argument("--data", type=Path, default=REPO / "benchmarks" / "data", help="folder of the csv")
+    parser.add_argument("--out", type=Path, default=FIGURES, help="folder of the figure")
+    parser.add_argument("--data", type=Path, default=DATA, help="folder of the csv")
     parser.add_argument("--vpp-inputs", type=Path, default=DEFAULT_VPP_INPUTS, help="json with the VPP's GZ column")
     parser.add_argument("--moments", type=float, nargs="+", default=list(MOMENTS), help="heeling couples [N m]")
     parser.add_argument("--seconds", type=float, default=60.0, help="simulated time per boat [s]")

@@ -1,7 +1,7 @@
 """What the physics profile costs: the E-Boat step and an environment's decision, earlier model against new,
 interleaved in one run on one device.
 
-    python -m benchmarks.profile_cost --device cuda:0 --boats 4096 16384 --json out/profile_cost.json
+    python -m benchmarks.perf.profile_cost --device cuda:0 --boats 4096 16384 --json out/profile_cost.json
 
 "Earlier" is the seed profile's forces on the mesh hull (``EBoatConfig(profile="seed", hydrostatics="mesh")``: Kerner's drag on the
 whole flow, the sheet's tables; the simulator's default before issue 19), "physics" the new default
@@ -22,9 +22,9 @@ import logging
 import torch
 import warp as wp
 
-from benchmarks.bench_eboat import build, time_step
-from benchmarks.bench_envs import seconds_per_call
-from benchmarks.timing import device_description, write_results_json
+from benchmarks.perf.bench_eboat import build, time_step
+from benchmarks.perf.bench_envs import seconds_per_call
+from benchmarks.perf.timing import device_description, write_results_json
 from ocean_warp.eboat import EBoatConfig, Hydrostatics, Profile
 from ocean_warp.envs import MissionConfig, SailingEnv
 

@@ -7,8 +7,8 @@ second = decisions/s x decision period) and the speed-up over the single-process
 baseline, "1 process"). Every configuration is timed for about ``--seconds`` of wall time after one
 warm-up decision; building the env (spawning the workers) is not timed.
 
-    python -m benchmarks.bench_sharded                                # 256 envs, workers 1, 2, 4, 8, 16
-    python -m benchmarks.bench_sharded --workers 1,2 --hull points    # capped at the machine's cores
+    python -m benchmarks.perf.bench_sharded                                # 256 envs, workers 1, 2, 4, 8, 16
+    python -m benchmarks.perf.bench_sharded --workers 1,2 --hull points    # capped at the machine's cores
 
 Prints a markdown table, with the CPU count, the decision period, dt, substeps, hull and sea.
 """

@@ -1,8 +1,8 @@
 """Training on 1 and on G GPUs with the same environments per GPU: collection throughput, scaling efficiency,
 and wall time to a policy that sails BCDACA.
 
-    python -m benchmarks.multi_gpu_bench --gpus 1,2                      # EBoatMission-v0, 4 096 envs per GPU, 4.5 min
-    python -m benchmarks.multi_gpu_bench --gpus 1 --minutes 1 --skip-eval  # a quick look on one GPU
+    python -m benchmarks.perf.multi_gpu_bench --gpus 1,2                      # EBoatMission-v0, 4 096 envs per GPU, 4.5 min
+    python -m benchmarks.perf.multi_gpu_bench --gpus 1 --minutes 1 --skip-eval  # a quick look on one GPU
 
 For each G in ``--gpus``: ``ocean-warp train --task EBoatMission-v0`` on G GPUs (``--gpus G``; G = 1 trains
 in one process on cuda) for ``--minutes`` of training, checkpoints every ``--save-interval`` iterations.

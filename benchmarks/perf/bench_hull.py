@@ -1,8 +1,8 @@
 """Benchmark: the hull-force pass and the full substep of ocean_warp against a vectorised torch
-implementation of the same per-triangle model (benchmarks/hull_references.py).
+implementation of the same per-triangle model (benchmarks/references/hull_references.py).
 
-    python benchmarks/bench_hull.py --device cuda:0 --boats 1024 4096 16384 65536 --triangles 500 2000 8000
-    python benchmarks/bench_hull.py --device cpu --boats 256 1024 --triangles 500 2000
+    python -m benchmarks.perf.bench_hull --device cuda:0 --boats 1024 4096 16384 65536 --triangles 500 2000 8000
+    python -m benchmarks.perf.bench_hull --device cpu --boats 256 1024 --triangles 500 2000
 
 Hull pass = sampling the ocean at every hull vertex + clipping and integrating every triangle (pressure,
 drag, suction, friction; slamming off) + the per-boat reduction. Full substep = ocean update (512 x 512,
@@ -15,23 +15,20 @@ from __future__ import annotations
 import argparse
 import datetime
 import logging
-import os
-import sys
 
 import numpy as np
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.hull_references import TorchHullReference  # noqa: E402
-from benchmarks.timing import (  # noqa: E402
+from benchmarks.references.hull_references import TorchHullReference
+from benchmarks.perf.timing import (
     device_description,
     median_seconds_host,
     median_seconds_torch_graph,
     median_seconds_warp_graph,
     write_results_json,
 )
-import ocean_warp as ow  # noqa: E402
+import ocean_warp as ow
 
 
 def boat_hull(target_triangles: int) -> ow.Hull:

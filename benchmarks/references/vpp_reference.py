@@ -55,7 +55,7 @@ for information).
 
 Run (CPU, about 30 s: 5 deg angle grid, a 1 deg refinement near the best upwind VMG, and the
 package-axes polar for comparison):
-    pip install -e ".[vpp]" && python benchmarks/vpp_reference.py
+    pip install -e ".[vpp]" && python -m benchmarks.references.vpp_reference
 Options: --inputs FILE, --hull-form FILE, --out DIR, --figure FILE, --no-package-axes-polar (skip the
 second, unpatched polar that the summary compares), see --help.
 """
@@ -74,8 +74,8 @@ from pathlib import Path
 import numpy as np
 
 from ocean_warp.atomic_files import atomic_output
+from benchmarks import REPO, DATA, FIGURES
 
-REPO = Path(__file__).resolve().parents[1]
 DEFAULT_INPUTS = REPO.parent / "shared/eboat/vpp_inputs.json"
 TRUE_WIND_SPEEDS = (3.0, 5.0, 7.0, 10.0)  # m/s
 TRUE_WIND_ANGLES = np.arange(30.0, 180.0 + 1e-9, 5.0)  # deg
@@ -210,7 +210,7 @@ def load_inputs(path: Path, hull_form: Path | None):
 
 def read_righting_arm(path: Path, series: str = "mesh") -> dict[str, list[float]]:
     """The righting-arm curve of ``path`` (a csv with columns series, heel_deg, gz_m, as
-    ``benchmarks/stability.py`` writes it: the rows of ``series``) in the package's GZ form, 0-60 deg."""
+    ``benchmarks/studies/righting_arm.py`` writes it: the rows of ``series``) in the package's GZ form, 0-60 deg."""
     heel, gz = [], []
     with open(path, newline="") as table:
         for row in csv.DictReader(table):
@@ -382,8 +382,8 @@ def main(argv=None):
     parser.add_argument("--righting-arm", type=Path, default=None,
                         help="csv of the righting arm replacing the inputs' GZ (series, heel_deg, gz_m: the "
                              "'mesh' rows of benchmarks/data/righting_arm.csv are the simulator's own boat)")
-    parser.add_argument("--out", type=Path, default=REPO / "benchmarks" / "data", help="folder of the csvs")
-    parser.add_argument("--figure", type=Path, default=REPO / "benchmarks" / "figures" / "vpp_reference.png")
+    parser.add_argument("--out", type=Path, default=DATA, help="folder of the csvs")
+    parser.add_argument("--figure", type=Path, default=FIGURES / "vpp_reference.png")
     parser.add_argument("--flat-min", type=float, default=0.25, help="lowest sail flattening factor")
     parser.add_argument("--phi-max", type=float, default=35.0, help="heel cap [deg]")
     parser.add_argument("--wind-profile", action="store_true",

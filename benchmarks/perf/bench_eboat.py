@@ -1,12 +1,12 @@
 """Benchmark: the full E-Boat step (ocean, hull pressure, wind, sail/keel/rudder/propeller, sensors,
 integration) in boat-substeps per second.
 
-    python benchmarks/bench_eboat.py --device cuda:0 --boats 1024 4096 16384 65536
-    python benchmarks/bench_eboat.py --device cpu --boats 1024 4096 16384 65536
+    python -m benchmarks.perf.bench_eboat --device cuda:0 --boats 1024 4096 16384 65536
+    python -m benchmarks.perf.bench_eboat --device cpu --boats 1024 4096 16384 65536
 
 Boats sail in a JONSWAP sea (512 x 512 grid over 512 m, Hs 1 m, Tp 5 s, choppiness 0.5 or --choppiness) and gusty
 wind, with random headings and sheet, rudder and propeller commands; the E-Boat's hull has 2 024
-triangles, or at most N with --hull-triangles N (benchmarks/hull_fidelity.py measures what that costs in
+triangles, or at most N with --hull-triangles N (benchmarks/studies/hull_fidelity.py measures what that costs in
 fidelity). A step is 5 substeps of 0.01 s. On CUDA the step is a captured graph.
 """
 
@@ -15,22 +15,19 @@ from __future__ import annotations
 import argparse
 import datetime
 import logging
-import os
-import sys
 
 import numpy as np
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.timing import (  # noqa: E402
+from benchmarks.perf.timing import (
     device_description,
     median_seconds_host,
     median_seconds_warp_graph,
     write_results_json,
 )
-import ocean_warp as ow  # noqa: E402
-from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
+import ocean_warp as ow
+from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 
 SUBSTEPS = 5
 

@@ -1,7 +1,7 @@
 """Benchmark: collection throughput of the batched sailing environment, with policy inference, per interface.
 
-    python benchmarks/bench_envs.py --device cuda:0 --envs 1024 4096 16384 65536
-    python benchmarks/bench_envs.py --device cpu --envs 64 256 1024 --decisions 3
+    python -m benchmarks.perf.bench_envs --device cuda:0 --envs 1024 4096 16384 65536
+    python -m benchmarks.perf.bench_envs --device cpu --envs 64 256 1024 --decisions 3
 
 For each number of environments it times, one decision at a time:
 - ``physics``: the bare simulator, ``steps_per_decision`` steps (a CUDA graph each) and nothing else;
@@ -23,20 +23,17 @@ import argparse
 import dataclasses
 import datetime
 import logging
-import os
-import sys
 import time
 
 import numpy as np
 import torch
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.timing import device_description, write_results_json  # noqa: E402
-from ocean_warp.envs import SailingEnv, WaypointPlusConfig  # noqa: E402
-from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv  # noqa: E402
-from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv  # noqa: E402
+from benchmarks.perf.timing import device_description, write_results_json
+from ocean_warp.envs import SailingEnv, WaypointPlusConfig
+from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv
+from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 
 
 def policy_network(inputs: int, hidden: list[int], device) -> torch.nn.Module:

@@ -1,6 +1,6 @@
 """Where an E-Boat step spends its time: each stage of the step timed alone, as its own CUDA graph.
 
-    python benchmarks/eboat_breakdown.py --boats 4096 16384 [--choppiness 0]
+    python -m benchmarks.perf.eboat_breakdown --boats 4096 16384 [--choppiness 0]
 
 Same scene as ``bench_eboat.py``. Per substep: ocean update, hull pass (vertex sampling, triangle
 clipping and pressure, per-boat sum), sailing rig (foils, sail swing, actuators, propeller), wind
@@ -12,15 +12,12 @@ from __future__ import annotations
 import argparse
 import datetime
 import logging
-import os
-import sys
 
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.bench_eboat import SUBSTEPS, build  # noqa: E402
-from benchmarks.timing import device_description, median_seconds_warp_graph  # noqa: E402
+from benchmarks.perf.bench_eboat import SUBSTEPS, build
+from benchmarks.perf.timing import device_description, median_seconds_warp_graph
 
 
 def graph_microseconds(launch, device) -> float:

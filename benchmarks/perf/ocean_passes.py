@@ -1,7 +1,7 @@
 """Where an ocean update's time goes on CUDA: each FFT pass alone, against a plain copy of the same
 bytes in the same tile shapes (the memory floor of each access pattern).
 
-    python benchmarks/ocean_passes.py --sizes 512 1024
+    python -m benchmarks.perf.ocean_passes --sizes 512 1024
 """
 
 from __future__ import annotations
@@ -9,17 +9,14 @@ from __future__ import annotations
 import argparse
 import functools
 import logging
-import os
-import sys
 
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.bench_ocean import sea  # noqa: E402
-from benchmarks.timing import median_seconds_warp_graph  # noqa: E402
-from ocean_warp import Ocean  # noqa: E402
-from ocean_warp.kernels.ocean_spectrum import packed_spectra  # noqa: E402
+from benchmarks.perf.bench_ocean import sea
+from benchmarks.perf.timing import median_seconds_warp_graph
+from ocean_warp import Ocean
+from ocean_warp.kernels.ocean_spectrum import packed_spectra
 
 
 @functools.cache

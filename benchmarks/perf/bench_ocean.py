@@ -1,9 +1,9 @@
 """Benchmark: one ocean update (all eight fields) by ocean_warp's Warp kernels against torch.fft and,
 on the CPU, numpy.fft doing the same work. On CUDA both Warp and torch run as captured graphs.
 
-    python benchmarks/bench_ocean.py --device cuda:0 --sizes 256 512 1024
-    python benchmarks/bench_ocean.py --device cpu --sizes 256 512
-    python benchmarks/bench_ocean.py --device cuda:0 --sweep 512     # launch configurations
+    python -m benchmarks.perf.bench_ocean --device cuda:0 --sizes 256 512 1024
+    python -m benchmarks.perf.bench_ocean --device cpu --sizes 256 512
+    python -m benchmarks.perf.bench_ocean --device cuda:0 --sweep 512     # launch configurations
 
 Prints a table; ``--json PATH`` also writes the numbers.
 """
@@ -13,23 +13,20 @@ from __future__ import annotations
 import argparse
 import datetime
 import logging
-import os
-import sys
 
 import numpy as np
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from benchmarks.ocean_references import NumpyOceanReference, TorchOceanReference  # noqa: E402
-from benchmarks.timing import (  # noqa: E402
+from benchmarks.references.ocean_references import NumpyOceanReference, TorchOceanReference
+from benchmarks.perf.timing import (
     device_description,
     median_seconds_host,
     median_seconds_torch_graph,
     median_seconds_warp_graph,
     write_results_json,
 )
-from ocean_warp import FftPlan, Ocean, OceanConfig  # noqa: E402
+from ocean_warp import FftPlan, Ocean, OceanConfig
 
 
 def sea(n: int) -> OceanConfig:

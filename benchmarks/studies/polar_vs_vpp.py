@@ -1,10 +1,10 @@
 """The twin's speed polar against the independent VPP's, in one figure and one table.
 
     ocean-warp polar --device cuda:0 --wind-speeds 3 5 7 10 --angle-step 5 --sheet-step 5 --settle 45 --out out/polar
-    python -m benchmarks.polar_vs_vpp --ours out/polar/polar.csv
+    python -m benchmarks.studies.polar_vs_vpp --ours out/polar/polar.csv
 
 Reads our polar (``ocean-warp polar``'s CSV) and the VPP's of the same hull
-(``benchmarks/vpp_reference.py --hull-form``, default ``benchmarks/data/mesh_hull/vpp_reference_polar.csv``)
+(``benchmarks/references/vpp_reference.py --hull-form``, default ``benchmarks/data/mesh_hull/vpp_reference_polar.csv``)
 and writes, atomically: ``benchmarks/figures/polar_vs_vpp.png`` (both polars, one panel per true wind
 speed) and ``benchmarks/data/polar_vs_vpp.csv`` (per wind speed: the best upwind VMG of each and their
 ratio, the true wind angle where ours is best upwind, the boat speed ratio at 60-150 deg: mean, lowest,
@@ -15,15 +15,14 @@ from __future__ import annotations
 
 import argparse
 import csv
-import math
 import os
 
 import numpy as np
 
 from ocean_warp.atomic_files import atomic_output
+from benchmarks import DATA, FIGURES
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-DEFAULT_VPP = os.path.join(HERE, "data", "mesh_hull", "vpp_reference_polar.csv")
+DEFAULT_VPP = os.path.join(DATA, "mesh_hull", "vpp_reference_polar.csv")
 REACHING = (60.0, 150.0)
 """True wind angles [deg] where boat speeds are compared."""
 
@@ -90,8 +89,8 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--ours", required=True, help="ocean-warp polar's polar.csv")
     parser.add_argument("--vpp", default=DEFAULT_VPP, help="the VPP's polar CSV")
-    parser.add_argument("--figure", default=os.path.join(HERE, "figures", "polar_vs_vpp.png"))
-    parser.add_argument("--table", default=os.path.join(HERE, "data", "polar_vs_vpp.csv"))
+    parser.add_argument("--figure", default=os.path.join(FIGURES, "polar_vs_vpp.png"))
+    parser.add_argument("--table", default=os.path.join(DATA, "polar_vs_vpp.csv"))
     args = parser.parse_args(argv)
     ours, vpp = read_polar(args.ours), read_polar(args.vpp)
     rows = compare(ours, vpp)

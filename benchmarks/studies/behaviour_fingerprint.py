@@ -1,7 +1,7 @@
 """A fingerprint of what the simulator and the environments do, to show that a refactor changed nothing.
 
-    python benchmarks/behaviour_fingerprint.py --out fingerprint_after.json [--device cpu]
-    python benchmarks/behaviour_fingerprint.py --compare fingerprint_before.json fingerprint_after.json
+    python -m benchmarks.studies.behaviour_fingerprint --out fingerprint_after.json [--device cpu]
+    python -m benchmarks.studies.behaviour_fingerprint --compare fingerprint_before.json fingerprint_after.json
 
 It runs, from fixed seeds, only through interfaces a user has (the gymnasium ids and the ``ocean-warp``
 command), so the same script can run on the code before and after a change:

@@ -1,7 +1,7 @@
 """The six-waypoint mission "BCDACA" sailed by the classical autopilot: many seeded runs in one batch.
 
-    python benchmarks/autopilot_mission.py                       # 20 runs on the CPU; exits 1 below 19/20
-    python benchmarks/autopilot_mission.py --runs 20 --device cuda:0 --seed 0 --sea-state 0.3
+    python -m benchmarks.studies.autopilot_mission                       # 20 runs on the CPU; exits 1 below 19/20
+    python -m benchmarks.studies.autopilot_mission --runs 20 --device cuda:0 --seed 0 --sea-state 0.3
 
 Each run is one environment of ``SailingEnv(MissionConfig())``: A (0, 0) -> B, C, D, A, C, A, each
 reached within 5 m; true wind 10 m/s toward +x with gusts (1 m/s, 0.1 rad); a JONSWAP sea (Hs
@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import os
 import sys
 import time
 
@@ -25,11 +24,10 @@ import numpy as np
 import torch
 import warp as wp
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig  # noqa: E402
-from ocean_warp.envs.apps.evaluation import evaluate_mission  # noqa: E402
-from ocean_warp.fleet import BoatStatus  # noqa: E402
+from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig
+from ocean_warp.envs.apps.evaluation import evaluate_mission
+from ocean_warp.fleet import BoatStatus
 
 
 def run_mission(runs: int = 20, *, device="cpu", seed: int = 0, sea_state: float = 0.3,

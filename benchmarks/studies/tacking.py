@@ -1,6 +1,6 @@
 """Tacking under sail alone: from close-hauled on one tack, through the wind, to close-hauled on the other.
 
-    python -m benchmarks.tacking --polar out/polar/polar.csv --device cuda:0
+    python -m benchmarks.studies.tacking --polar out/polar/polar.csv --device cuda:0
 
 For each true wind speed (default 5 and 10 m/s) the boat starts close-hauled on starboard (the wind over
 its starboard bow) at the true wind angle of its best upwind VMG in the polar, with that polar point's
@@ -30,8 +30,8 @@ from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.heading_autopilot import HeadingAutopilot
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.wind import WindConfig
+from benchmarks import DATA
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 SETTLED_DEG = 10.0
 """Within this of the new course the tack is done [deg]."""
 
@@ -100,7 +100,7 @@ def main(argv=None) -> None:
     parser.add_argument("--after", type=float, default=40.0, help="sailed after the order [s]")
     parser.add_argument("--dt", type=float, default=0.05)
     parser.add_argument("--device", default=None)
-    parser.add_argument("--out", default=os.path.join(HERE, "data", "tacking.csv"))
+    parser.add_argument("--out", default=os.path.join(DATA, "tacking.csv"))
     args = parser.parse_args(argv)
     points = close_hauled_points(args.polar, args.wind_speeds)
     rows = [tack(w, *points[w], boats=args.boats, settle=args.settle, after=args.after, dt=args.dt, device=args.device)

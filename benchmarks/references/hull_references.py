@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import torch
 
-from benchmarks.ocean_references import TorchOceanReference
+from benchmarks.references.ocean_references import TorchOceanReference
 
 
 def rotate(q, v):
