@@ -23,7 +23,7 @@ for stage in $stages; do
            timeout 300 python -m benchmarks.perf.bench_eboat --device cuda:0 --choppiness 0 --json "$out/eboat_flat.json" 2>&1 | tee "$out/eboat_flat.txt" ;;
     breakdown) timeout 300 python -m benchmarks.perf.eboat_breakdown --device cuda:0 --choppiness 0 2>&1 | tee "$out/breakdown.txt"
                timeout 300 python -m benchmarks.perf.eboat_breakdown --device cuda:0 --choppiness 0.5 2>&1 | tee -a "$out/breakdown.txt" ;;
-    polar) timeout 300 python -m ocean_warp.examples.polar --device cuda:0 --angle-step 10 --sheet-step 10 --out "$out/polar" 2>&1 | tee "$out/polar.txt" ;;
+    polar) timeout 300 python -m ocean_warp.examples.polar_chart --device cuda:0 --angle-step 10 --sheet-step 10 --out "$out/polar" 2>&1 | tee "$out/polar.txt" ;;
     envs) timeout 420 python -m benchmarks.perf.bench_envs --device cuda:0 --envs 1024 4096 16384 65536 --json "$out/envs.json" 2>&1 | tee "$out/envs.txt"
           timeout 240 python -m benchmarks.perf.bench_envs --device cuda:0 --envs 4096 16384 --dt 0.1 --interfaces core rsl_rl --json "$out/envs_dt01.json" 2>&1 | tee "$out/envs_dt01.txt" ;;
     mission) timeout 400 python -m benchmarks.studies.autopilot_mission --device cuda:0 --runs 20 2>&1 | tee "$out/mission.txt" ;;

@@ -18,7 +18,7 @@ import warp as wp
 from .foils import FoilTables, foil_force
 from .rigid_body import STATUS_BAD_INPUT, STATUS_NONFINITE
 from .spatial import DEGREES, point_velocity, vec6, wrench_at
-from .wind import GustModel, wind_at_height
+from .wind_field import GustModel, wind_at_height
 
 __all__ = ["RigParameters", "sailing_rig", "reset_rig"]
 

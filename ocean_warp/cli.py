@@ -8,10 +8,10 @@ import sys
 JOBS = {
     "demo": ("ocean_warp.envs.apps.demo", "a fleet sails the BCDACA mission in waves (policy and autopilot): USD stage, "
              "PNGs, table"),
-    "ocean": ("ocean_warp.examples.ocean", "a JONSWAP sea: height field and spectrum PNGs"),
+    "ocean": ("ocean_warp.examples.ocean_snapshot", "a JONSWAP sea: height field and spectrum PNGs"),
     "drop-hulls": ("ocean_warp.examples.drop_hulls", "hulls of several shapes dropped into waves: heave and roll"),
     "train": ("ocean_warp.envs.training.train_loop", "train a sailing policy with rsl-rl PPO (progress, TensorBoard, checkpoints)"),
-    "polar": ("ocean_warp.examples.polar", "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
+    "polar": ("ocean_warp.examples.polar_chart", "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
     "eval": ("ocean_warp.envs.apps.evaluation", "a task sailed many times in waves, policy vs autopilot: PNG and CSV "
              "(--task ID: any registered task; default the BCDACA mission, 20 runs)"),
     "export-usd": ("ocean_warp.envs.apps.usd_export", "record a scenario (boats, sea, wind, controller, duration) to a "

@@ -8,7 +8,7 @@ import numpy as np
 import warp as wp
 
 from .kernels.random_streams import SENSOR_NOISE, SENSOR_RESET_NOISE, advance_counter
-from .kernels.sensors import CHANNELS, SensorModel, read_sensors, reset_sensors
+from .kernels.sensor_readings import CHANNELS, SensorModel, read_sensors, reset_sensors
 from .kernels.spatial import vec6
 from .masks import mask_of
 from .torch_streams import ordered_with_torch
@@ -21,7 +21,7 @@ CHANNEL_NAMES = (
     "accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z",
     "heading", "apparent_wind_angle", "apparent_wind_speed", "water_speed",
 )
-"""Column names of the reading arrays; units and frames in ``ocean_warp.kernels.sensors``."""
+"""Column names of the reading arrays; units and frames in ``ocean_warp.kernels.sensor_readings``."""
 
 
 @dataclasses.dataclass(frozen=True)

@@ -9,7 +9,7 @@ import numpy as np
 import warp as wp
 
 from .kernels.random_streams import advance_counter
-from .kernels.wind import GustModel, reset_wind, update_wind
+from .kernels.wind_field import GustModel, reset_wind, update_wind
 from .masks import mask_of, rows_at
 from .torch_streams import ordered_with_torch
 from .validation import (
@@ -28,7 +28,7 @@ __all__ = ["WindConfig", "Wind"]
 class WindConfig:
     """The wind over every environment, until :meth:`Wind.set` changes an environment's mean.
 
-    Gusts are Ornstein-Uhlenbeck processes on speed and direction (see ``ocean_warp.kernels.wind``):
+    Gusts are Ornstein-Uhlenbeck processes on speed and direction (see ``ocean_warp.kernels.wind_field``):
     each wanders around its mean with the given standard deviation and correlation time."""
 
     speed: float = 5.0

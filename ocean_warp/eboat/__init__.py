@@ -5,7 +5,7 @@ from .eboat import EBoat, EBoatConfig, Hydrostatics, Profile, eboat_hydrodynamic
 from .hull_shape import HullShape, eboat_hull
 from .mass_properties import MassProperties, eboat_mass_properties
 from .sheet import Version
-from .simulator import EBoatSimulator, SailingRig
+from .eboat_simulator import EBoatSimulator, SailingRig
 from .simulator_config import EBoatSimulatorConfig, still_water
 from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
 

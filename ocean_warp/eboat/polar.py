@@ -22,7 +22,7 @@ from ..replay import ReplayedLaunches
 from ..wind import WindConfig
 from .heading_autopilot import HeadingAutopilot
 from .eboat import EBoatConfig
-from .simulator import EBoatSimulator
+from .eboat_simulator import EBoatSimulator
 from .simulator_config import EBoatSimulatorConfig
 
 __all__ = ["PolarResult", "speed_polar"]

@@ -26,7 +26,7 @@ from .preview import render_preview
 from .recorder import (INSTANCING_THRESHOLD, TIME_CODES_PER_SECOND, StageRecorder, loop_path_for, record_eboat,
                        write_ocean_loop)
 from .stage_file import check_stage_path
-from .validation import validate_stage
+from .stage_validation import validate_stage
 
 __all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "validate_stage", "render_preview",
            "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",

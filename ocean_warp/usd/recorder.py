@@ -32,7 +32,7 @@ from ..eboat.eboat import EBoatConfig
 from ..ocean import Ocean
 from ..validation import require_finite, require_int_in_range, require_non_negative, require_positive
 from .boat_prototype import define_boat_prototype, eboat_parts
-from .fleet import InstancedFleetWriter, PrimFleetWriter
+from .fleet_prims import InstancedFleetWriter, PrimFleetWriter
 from .markers import define_route, define_wind_arrow
 from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
 from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST

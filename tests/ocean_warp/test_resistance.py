@@ -15,7 +15,7 @@ from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorC
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.hull_form import floating_waterline, measure_hull_form
 from ocean_warp.resistance import ResiduaryResistance
-from tests.paths import BENCHMARK_DATA
+from tests.repo_paths import BENCHMARK_DATA
 
 RHO, G, NU = 1025.0, 9.81, 1.19e-6
 REFERENCE = BENCHMARK_DATA / "mesh_hull" / "vpp_reference_resistance.csv"

@@ -9,7 +9,7 @@ import warp as wp
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics, Profile
 from ocean_warp.eboat.polar import speed_polar
-from ocean_warp.examples.polar import hull_speed
+from ocean_warp.examples.polar_chart import hull_speed
 from ocean_warp.kernels.heading_hold import accumulate_course_keeping
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 from tests.hull_setups import random_rotations

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from ocean_warp.eboat.polar import speed_polar
-from tests.paths import BENCHMARK_DATA
+from tests.repo_paths import BENCHMARK_DATA
 
 VPP = BENCHMARK_DATA / "mesh_hull" / "vpp_reference_polar.csv"
 

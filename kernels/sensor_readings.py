@@ -27,7 +27,7 @@ import warp as wp
 
 from .random_streams import IMU_BIAS, stream_state
 from .spatial import heading_of, point_velocity, vec6, wrap_angle
-from .wind import GustModel, wind_at_height
+from .wind_field import GustModel, wind_at_height
 
 __all__ = ["CHANNELS", "vec16", "SensorModel", "read_sensors", "reset_sensors"]
 

@@ -1,6 +1,6 @@
 """Example: a JONSWAP sea, advanced in time, with a picture of its surface and its spectrum.
 
-    ocean-warp ocean --out out/ocean          # or: python -m ocean_warp.examples.ocean --out out/ocean
+    ocean-warp ocean --out out/ocean          # or: python -m ocean_warp.examples.ocean_snapshot --out out/ocean
 
 Writes ``ocean_height.png`` (the height field at the last time) and ``ocean_spectrum.png`` (the
 spectrum the sea was drawn from against the one measured on the evolving grid).

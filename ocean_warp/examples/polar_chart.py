@@ -1,6 +1,6 @@
 """The E-Boat's speed polar: steady speed over true wind angles 0-180 deg for true wind 4, 7 and 10 m/s.
 
-    python -m ocean_warp.examples.polar --out out/polar          # or: ocean-warp polar --out out/polar
+    python -m ocean_warp.examples.polar_chart --out out/polar          # or: ocean-warp polar --out out/polar
 
 Every (wind speed, wind angle, sheet setting) is one boat of one batched simulation; an autopilot holds
 each heading and the sheet setting with the best steady speed wins (see ``ocean_warp.eboat.polar``).

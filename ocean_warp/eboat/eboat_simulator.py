@@ -8,17 +8,17 @@ import dataclasses
 import numpy as np
 import warp as wp
 
-from ..fleet import Fleet
-from ..frames import quaternion_from_roll_pitch_yaw
-from ..kernels.point_buoyancy import point_buoyancy
-from ..kernels.sailing_rig import reset_rig, sailing_rig
-from ..masks import mask_of, rows_at
-from ..ocean import Ocean
-from ..sensors import Sensors
-from ..simulator import Simulator
-from ..torch_streams import ordered_with_torch
-from ..validation import require_indices, require_int_in_range, require_per_item, require_rows
-from ..wind import Wind
+from ocean_warp.fleet import Fleet
+from ocean_warp.frames import quaternion_from_roll_pitch_yaw
+from ocean_warp.kernels.point_buoyancy import point_buoyancy
+from ocean_warp.kernels.sailing_rig import reset_rig, sailing_rig
+from ocean_warp.masks import mask_of, rows_at
+from ocean_warp.ocean import Ocean
+from ocean_warp.sensors import Sensors
+from ocean_warp.simulator import Simulator
+from ocean_warp.torch_streams import ordered_with_torch
+from ocean_warp.validation import require_indices, require_int_in_range, require_per_item, require_rows
+from ocean_warp.wind import Wind
 from .eboat import EBoat, Hydrostatics
 from .simulator_config import EBoatSimulatorConfig
 from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
