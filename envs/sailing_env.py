@@ -36,7 +36,7 @@ from .tasks.task_kernels import (
 )
 from .tasks.task_configs import ObservationSet, TaskConfig
 
-__all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "episode_log"]
+__all__ = ["SailingEnv", "DecisionHook", "EnvBuffers", "environment_origins", "episode_log"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -90,6 +90,22 @@ def environment_origins(count: int, tile_size: float, spread: bool) -> np.ndarra
     steps = np.arange(count, dtype=np.float64)[:, None] * np.array([1.0 / plastic, 1.0 / plastic**2])
     xy = np.mod(0.5 + steps, 1.0) * tile_size
     return np.column_stack([xy, np.zeros(count)]).astype(np.float32)
+
+
+class DecisionHook:
+    """Launches a recorder adds at fixed points of a decision (:meth:`SailingEnv.launch_decision`): after the
+    actions kernel, after each physics step and after the last one, before the task's kernels restart the
+    environments that ended. They run inside the decision's graph, so they must be device work only (copies
+    into arrays allocated once). The defaults launch nothing."""
+
+    def after_actions(self, env: "SailingEnv") -> None:
+        """After actions became actuator commands (``env.simulator.control``)."""
+
+    def after_physics_step(self, env: "SailingEnv", step: int) -> None:
+        """After physics step ``step`` (0 ... ``env.steps_per_decision`` - 1) of the decision."""
+
+    def after_physics(self, env: "SailingEnv") -> None:
+        """After the decision's physics, before rewards, episode ends and resets."""
 
 
 class SailingEnv:
@@ -191,9 +207,21 @@ class SailingEnv:
             self._replayed_decision()
 
     def _launch_decision(self) -> None:
+        self.launch_decision()
+
+    def launch_decision(self, hook: DecisionHook | None = None) -> None:
+        """The launches of one decision (what :meth:`step` replays): actions to commands, the physics steps
+        and the task's kernels, with ``hook``'s launches at its three points (launch only; graph-safe when
+        the hook's are)."""
         self.launch_actions()
-        for _ in range(self.steps_per_decision):
+        if hook is not None:
+            hook.after_actions(self)
+        for step in range(self.steps_per_decision):
             self.simulator.launch_step()
+            if hook is not None:
+                hook.after_physics_step(self, step)
+        if hook is not None:
+            hook.after_physics(self)
         self.launch_task()
 
     def launch_actions(self) -> None:

@@ -95,7 +95,7 @@ from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
 from ..controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
-from ..sailing_env import SailingEnv
+from ..sailing_env import DecisionHook, SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
 from ..training.policy_io import CheckpointError, Policy, load_policy
@@ -361,9 +361,10 @@ class FleetController:
         return counts
 
 
-class RecordedDecision:
-    """One decision of ``env``, launched as ``SailingEnv.step`` launches it (and captured as one graph
-    likewise), with each boat's propeller command copied out after the actions kernel and its pose
+class RecordedDecision(DecisionHook):
+    """One decision of ``env``, launched by ``SailingEnv.launch_decision`` as ``SailingEnv.step`` launches it
+    (and captured as one graph likewise), with this object as its :class:`DecisionHook`: each boat's
+    propeller command copied out after the actions kernel and its pose
     after the physics, before the task's kernels restart the runs that ended: ``env.step()`` keeps no
     pose from before that reset, and the last decision of a run is where it reached its last waypoint,
     capsized or was lost. A test checks that it stays step for step the same as ``env.step()``.
@@ -399,22 +400,25 @@ class RecordedDecision:
         self._replayed = ReplayedLaunches(self._launch, device, capture=env.task.simulator.capture_graph)
 
     def _launch(self) -> None:
-        env, state = self.env, self.env.simulator.state
-        n, every = env.num_envs, env.steps_per_decision // self.frames_per_decision
-        env.launch_actions()
+        self.env.launch_decision(self)
+
+    # --- DecisionHook: the copies, launched inside the decision ------------------------------------
+    def after_actions(self, env: SailingEnv) -> None:
         wp.copy(self.propeller, env.simulator.control.propeller)
-        for step in range(env.steps_per_decision):
-            env.simulator.launch_step()
-            if (step + 1) % every == 0:
-                offset = ((step + 1) // every - 1) * n
-                for source, target in ((state.position, self.frame_position),
-                                       (state.orientation, self.frame_orientation),
-                                       (state.boom_angle, self.frame_boom_angle),
-                                       (state.rudder_angle, self.frame_rudder_angle)):
-                    wp.copy(target, source, dest_offset=offset, count=n)
-        wp.copy(self.position, state.position)
-        wp.copy(self.orientation, state.orientation)
-        env.launch_task()
+
+    def after_physics_step(self, env: SailingEnv, step: int) -> None:
+        n, every = env.num_envs, env.steps_per_decision // self.frames_per_decision
+        if (step + 1) % every:
+            return
+        state, offset = env.simulator.state, ((step + 1) // every - 1) * n
+        for source, target in ((state.position, self.frame_position), (state.orientation, self.frame_orientation),
+                               (state.boom_angle, self.frame_boom_angle),
+                               (state.rudder_angle, self.frame_rudder_angle)):
+            wp.copy(target, source, dest_offset=offset, count=n)
+
+    def after_physics(self, env: SailingEnv) -> None:
+        wp.copy(self.position, env.simulator.state.position)
+        wp.copy(self.orientation, env.simulator.state.orientation)
 
     def __call__(self) -> None:
         with ordered_with_torch(self.env.device):
