@@ -18,6 +18,7 @@ import numpy as np
 import torch
 import warp as wp
 
+from ocean_warp.device_structs import struct_from
 from ocean_warp.eboat import EBoatSimulator, Hydrostatics
 from ocean_warp.fleet import BoatStatus
 from ocean_warp.replay import ReplayedLaunches
@@ -314,23 +315,9 @@ def episode_log(b: EnvBuffers) -> dict[str, torch.Tensor]:
 
 
 def _task_parameters(task: TaskConfig) -> TaskParameters:
-    p = TaskParameters()
-    r = task.reward
-    p.route_length = task.route_length
-    p.reach_radius = task.reach_radius
-    p.lost_margin = task.lost_margin
-    p.progress_scale = r.progress_scale
-    p.propeller_gain = r.propeller_gain
-    p.propeller_cost = r.propeller_cost
-    p.reach_bonus = r.reach_bonus
-    p.lost_penalty = r.lost_penalty
-    p.flagged_penalty = r.flagged_penalty
-    p.smoothness = r.smoothness
-    p.time_cost = r.time_cost
-    p.max_episode_length = task.max_episode_length
-    p.observation_set = 0 if ObservationSet(task.observation) is ObservationSet.SEED else 1
-    p.sail_only = int(not task.propeller)
-    return p
+    return struct_from(TaskParameters, task, task.reward,
+                       observation_set=0 if ObservationSet(task.observation) is ObservationSet.SEED else 1,
+                       sail_only=int(not task.propeller))
 
 
 def _start_distribution(task: TaskConfig, start_height: float) -> StartDistribution:

@@ -7,6 +7,7 @@ import math
 
 import warp as wp
 
+from .device_structs import struct_from
 from .fleet import Fleet
 from .hydrodynamics_config import HydrodynamicsConfig
 from .kernels.hull_forces import WaterModel, hull_wrenches_kernel, sample_origin_water
@@ -170,22 +171,8 @@ class Simulator:
 
 
 def _water_model(config: HydrodynamicsConfig, substep: float) -> WaterModel:
-    water = WaterModel()
-    water.density = config.water_density
-    water.gravity = config.gravity
-    water.kinematic_viscosity = config.kinematic_viscosity
-    water.inverse_reference_speed = 1.0 / config.reference_speed
-    water.pressure_drag_linear = config.pressure_drag_linear
-    water.pressure_drag_quadratic = config.pressure_drag_quadratic
-    water.pressure_drag_falloff = config.pressure_drag_falloff
-    water.suction_linear = config.suction_linear
-    water.suction_quadratic = config.suction_quadratic
-    water.suction_falloff = config.suction_falloff
-    water.skin_friction = int(config.skin_friction)
-    water.friction_factor = 1.0 + config.form_factor
-    water.cross_flow_only = int(config.cross_flow_only)
-    water.slamming = int(config.slamming)
-    water.slamming_power = config.slamming_power
-    water.inverse_slamming_max_acceleration = 1.0 / config.slamming_max_acceleration
-    water.substep = substep
-    return water
+    return struct_from(WaterModel, config, density=config.water_density,
+                       inverse_reference_speed=1.0 / config.reference_speed,
+                       skin_friction=int(config.skin_friction), friction_factor=1.0 + config.form_factor,
+                       cross_flow_only=int(config.cross_flow_only), slamming=int(config.slamming),
+                       inverse_slamming_max_acceleration=1.0 / config.slamming_max_acceleration, substep=substep)

@@ -30,6 +30,7 @@ import math
 
 import warp as wp
 
+from ocean_warp.device_structs import struct_from
 from ocean_warp.validation import require_in_range, require_int_in_range, require_non_negative, require_positive
 
 from .autopilot_kernels import AutopilotParameters, reset_autopilot, sail_to_targets
@@ -159,10 +160,7 @@ class AutopilotConfig:
 
     def parameters(self) -> AutopilotParameters:
         """The kernels' view of this config."""
-        p = AutopilotParameters()
-        for field in dataclasses.fields(self):
-            setattr(p, field.name, getattr(self, field.name))
-        return p
+        return struct_from(AutopilotParameters, self)
 
 
 def _open_range(name: str, value, low: float, high: float) -> float:
