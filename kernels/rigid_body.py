@@ -40,9 +40,7 @@ __all__ = [
     "solve6",
     "integrate_boats",
     "place_boat",
-    "reset_boats",
     "reset_boats_masked",
-    "reset_swept_rates",
     "reset_swept_rates_masked",
     "advance_time",
 ]
@@ -335,26 +333,6 @@ def place_boat(
 
 
 @wp.kernel(enable_backward=False)
-def reset_boats(
-    boats: wp.array(dtype=int),
-    new_position: wp.array(dtype=wp.vec3),
-    new_orientation: wp.array(dtype=wp.quat),
-    new_velocity: wp.array(dtype=vec6),
-    position: wp.array(dtype=wp.vec3),
-    orientation: wp.array(dtype=wp.quat),
-    velocity: wp.array(dtype=vec6),
-    status: wp.array(dtype=int),
-    wrench_world: wp.array(dtype=vec6),
-    wrench_body: wp.array(dtype=vec6),
-    water_velocity: wp.array(dtype=wp.vec3),
-):
-    """Boat ``boats[i]`` to the i-th new state (launch dim: the number of boats reset)."""
-    i = wp.tid()
-    place_boat(boats[i], new_position[i], new_orientation[i], new_velocity[i], position, orientation, velocity,
-               status, wrench_world, wrench_body, water_velocity)
-
-
-@wp.kernel(enable_backward=False)
 def reset_boats_masked(
     mask: wp.array(dtype=wp.int32),
     new_position: wp.array(dtype=wp.vec3),
@@ -385,20 +363,6 @@ def forget_swept_rate(boat: int, triangle: int, hull_type: wp.array(dtype=int), 
 
 
 @wp.kernel(enable_backward=False)
-def reset_swept_rates(
-    boats: wp.array(dtype=int),
-    hull_type: wp.array(dtype=int),
-    triangle_count: wp.array(dtype=int),
-    triangle_offset: wp.array(dtype=int),
-    no_history: float,
-    swept_rate: wp.array(dtype=float),
-):
-    """Forget the slamming history of the reset boats (launch dim (boats, most triangles))."""
-    i, triangle = wp.tid()
-    forget_swept_rate(boats[i], triangle, hull_type, triangle_count, triangle_offset, no_history, swept_rate)
-
-
-@wp.kernel(enable_backward=False)
 def reset_swept_rates_masked(
     mask: wp.array(dtype=wp.int32),
     hull_type: wp.array(dtype=int),
@@ -407,7 +371,8 @@ def reset_swept_rates_masked(
     no_history: float,
     swept_rate: wp.array(dtype=float),
 ):
-    """The same for every boat whose ``mask`` is non-zero (launch dim (all boats, most triangles))."""
+    """Forget the slamming history of every boat whose ``mask`` is non-zero (launch dim (all boats, most
+    triangles))."""
     boat, triangle = wp.tid()
     if mask[boat] != 0:
         forget_swept_rate(boat, triangle, hull_type, triangle_count, triangle_offset, no_history, swept_rate)

@@ -19,9 +19,7 @@ from .kernels.rigid_body import (
     STATUS_SUNK,
     BodyParameters,
     mat66,
-    reset_boats,
     reset_boats_masked,
-    reset_swept_rates,
     reset_swept_rates_masked,
 )
 from .kernels.spatial import vec6
@@ -153,22 +151,25 @@ class Fleet:
             raise ValueError("Fleet.reset: orientation quaternions must not be zero")
         if k == 0:
             return
+        # The host path builds a mask and full-length rows and takes the device path: one reset kernel.
+        mask = np.zeros(self.count, dtype=np.int32)
+        mask[indices] = 1
+        rows = {"position": np.zeros((self.count, 3), np.float32),
+                "orientation": np.tile(np.array([0.0, 0.0, 0.0, 1.0], np.float32), (self.count, 1)),
+                "velocity": np.zeros((self.count, 6), np.float32)}
+        rows["position"][indices] = position
+        rows["orientation"][indices] = orientation / norms[:, None]
+        rows["velocity"][indices] = velocity
         device = self.device
         with ordered_with_torch(device):
-            boats_wp = wp.array(indices, dtype=int, device=device)
-            wp.launch(reset_boats, dim=k, device=device, inputs=[
-                boats_wp, wp.array(position, dtype=wp.vec3, device=device),
-                wp.array(orientation / norms[:, None], dtype=wp.quat, device=device),
-                wp.array(velocity, dtype=vec6, device=device)],
-                outputs=[self.position, self.orientation, self.velocity, self.status, self.wrench_world,
-                         self.wrench_body, self.water_velocity])
-            wp.launch(reset_swept_rates, dim=(k, self.max_triangle_count), device=device,
-                      inputs=[boats_wp, self.hull_type, self.meshes.triangle_count, self.triangle_offset,
-                              float(NO_SWEPT_RATE)], outputs=[self.swept_rate])
+            self.reset_masked(wp.array(mask, dtype=wp.int32, device=device),
+                              wp.array(rows["position"], dtype=wp.vec3, device=device),
+                              wp.array(rows["orientation"], dtype=wp.quat, device=device),
+                              wp.array(rows["velocity"], dtype=vec6, device=device))
 
     def reset_masked(self, mask: wp.array, position: wp.array, orientation: wp.array, velocity: wp.array) -> None:
         """The device path of :meth:`reset`: every boat whose ``mask`` (N,) int32 is non-zero goes to its row
-        of ``position`` (N,) vec3 [m], ``orientation`` (N,) quat (normalised here) and ``velocity`` (N,)
+        of ``position`` (N,) vec3 [m], ``orientation`` (N,) quat (unit length) and ``velocity`` (N,)
         vec6; the others are untouched. It only launches kernels (no allocation, no host copy), so it
         may run inside a captured CUDA graph; the caller orders it with torch."""
         device = self.device
