@@ -17,7 +17,7 @@ from .replay import ReplayedLaunches
 from .torch_streams import ordered_with_torch
 from .validation import require_in_range, require_int_in_range, require_positive
 
-__all__ = ["Simulator", "SimulatorConfig"]
+__all__ = ["Simulator", "SimulatorConfig", "ocean_updates_of_step", "launch_clock_advance"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -141,7 +141,7 @@ class Simulator:
         for model in self.models:
             model.substep(self)
         self.integrate()
-        wp.launch(advance_time, dim=1, inputs=[self.ocean.time, wp.float64(self.config.substep_dt)], device=self.device)
+        launch_clock_advance(self.ocean.time, self.config.substep_dt, self.device)
 
     def _sample_origin_water(self) -> None:
         """Without the hull pass, still sample the water velocity at each boat's origin."""
@@ -152,8 +152,8 @@ class Simulator:
     def launch_step(self) -> None:
         """Launch one step's kernels without capturing them, e.g. inside a larger capture of the caller's
         (an environment's decision step); :meth:`step` is the usual way."""
-        for index in range(self.config.substeps):
-            self.substep(update_ocean=self.config.ocean_every_substep or index == 0)
+        for update_ocean in ocean_updates_of_step(self.config.substeps, self.config.ocean_every_substep):
+            self.substep(update_ocean=update_ocean)
         for model in self.models:
             if callable(getattr(model, "step", None)):
                 model.step(self)
@@ -168,6 +168,17 @@ class Simulator:
     def step_graph(self) -> wp.Graph | None:
         """The captured step (after the first :meth:`step`; None without capture), for benchmarks."""
         return self._replayed_step.graph
+
+
+def ocean_updates_of_step(substeps: int, every_substep: bool) -> list[bool]:
+    """Which substeps of a step update the ocean before their forces: every one with ``every_substep``,
+    else the first only. The simulator's clock then advances by the substep dt after each substep."""
+    return [every_substep or index == 0 for index in range(substeps)]
+
+
+def launch_clock_advance(time: wp.array, substep_dt: float, device) -> None:
+    """The simulator's clock: ``time`` (1,) float64 [s] += ``substep_dt`` [s], on the device (graph-safe)."""
+    wp.launch(advance_time, dim=1, inputs=[time, wp.float64(substep_dt)], device=device)
 
 
 def _water_model(config: HydrodynamicsConfig, substep: float) -> WaterModel:

@@ -18,9 +18,9 @@ import torch
 import warp as wp
 
 from ocean_warp.kernels.ocean_spectrum import FIELD_COUNT
-from ocean_warp.kernels.rigid_body import advance_time
 from ocean_warp.ocean import Ocean
 from ocean_warp.replay import ReplayedLaunches
+from ocean_warp.simulator import launch_clock_advance, ocean_updates_of_step
 
 from ..tasks.task_configs import TaskConfig
 
@@ -30,7 +30,7 @@ __all__ = ["SharedOcean", "ocean_updates_per_decision"]
 def ocean_updates_per_decision(task: TaskConfig) -> int:
     """How many times one decision of ``task`` updates the ocean."""
     sim = task.simulator
-    return task.steps_per_decision * (sim.substeps if sim.ocean_every_substep else 1)
+    return task.steps_per_decision * sum(ocean_updates_of_step(sim.substeps, sim.ocean_every_substep))
 
 
 class SharedOcean:
@@ -57,19 +57,19 @@ class SharedOcean:
         self._slot_view = wp.from_torch(self.slots, dtype=wp.vec2f)
         self._steps, self._substeps = task.steps_per_decision, sim.substeps
         self._every_substep = sim.ocean_every_substep
-        self._substep_dt = wp.float64(sim.simulator_config().substep_dt)
+        self._substep_dt = sim.simulator_config().substep_dt
         self._fill = [ReplayedLaunches(lambda p=parity: self._launch_fill(p), "cpu") for parity in (0, 1)]
 
     def _launch_fill(self, parity: int) -> None:
-        """The updates of one decision into half ``parity`` of the slots, advancing the clock as a
-        worker's simulator does (update first, then time += substep dt, each substep)."""
+        """The updates of one decision into half ``parity`` of the slots, on the simulator's own schedule
+        and clock (``ocean_warp.simulator``'s ``ocean_updates_of_step`` and ``launch_clock_advance``)."""
         slot = parity * self.updates_per_decision
         for _ in range(self._steps):
-            for substep in range(self._substeps):
-                if self._every_substep or substep == 0:
+            for update_ocean in ocean_updates_of_step(self._substeps, self._every_substep):
+                if update_ocean:
                     self.ocean.update(out=self._slot_view[slot])
                     slot += 1
-                wp.launch(advance_time, dim=1, inputs=[self.ocean.time, self._substep_dt], device="cpu")
+                launch_clock_advance(self.ocean.time, self._substep_dt, "cpu")
 
     def restart(self, start_time: float | None = None) -> None:
         """Evaluate the next decision's fields again, from ``start_time`` [s] (None: from the start time
