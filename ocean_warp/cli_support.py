@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 from typing import NoReturn
 
@@ -17,7 +18,7 @@ from .devices import DEVICE_FORMS, resolve_device
 
 __all__ = ["COMMAND", "HelpFormatter", "RawDescriptionHelpFormatter", "job_parser", "error_text", "fail",
            "report_error", "option_problem", "check_options", "finite_at_least",
-           "finite_above", "add_device_argument", "checked_device", "plural"]
+           "finite_above", "add_device_argument", "checked_device", "made_folder", "plural"]
 
 COMMAND = "ocean-warp"
 """The command's name, as its usage lines say it."""
@@ -107,6 +108,15 @@ def checked_device(parser: argparse.ArgumentParser, device: str | None) -> str:
         return resolve_device(device, name="--device")
     except ValueError as error:
         fail(parser, str(error))
+
+
+def made_folder(parser: argparse.ArgumentParser, folder: str, option: str = "--out") -> str:
+    """``folder`` (``option``'s value) made if it is not there yet, or :func:`fail` with why it cannot be."""
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as error:
+        fail(parser, f"{option} {folder}: {error.strerror or error}")
+    return folder
 
 
 def plural(count: int, noun: str, plural_form: str | None = None) -> str:

@@ -21,9 +21,9 @@ from ocean_warp.cli_support import (
     add_device_argument,
     check_options,
     checked_device,
-    fail,
     finite_at_least,
     job_parser,
+    made_folder,
     plural,
 )
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
@@ -129,10 +129,7 @@ def main(argv=None) -> int:
     ))
     device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    try:
-        os.makedirs(args.out, exist_ok=True)
-    except OSError as error:
-        fail(parser, f"--out {args.out}: {error.strerror or error}")
+    made_folder(parser, args.out)
     report = run(args.out, device=device, boats_per_shape=args.boats_per_shape, seconds=args.seconds)
     print(f"{plural(report['boats'], 'hull')} on {report['device']} for {args.seconds:g} s, "
           f"{report['flagged']} flagged (capsized, sunk, flying or non-finite)")

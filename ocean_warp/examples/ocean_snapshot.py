@@ -23,10 +23,10 @@ from ocean_warp.cli_support import (
     add_device_argument,
     check_options,
     checked_device,
-    fail,
     finite_above,
     finite_at_least,
     job_parser,
+    made_folder,
 )
 from ocean_warp.ocean_config import MAX_RESOLUTION, MIN_RESOLUTION
 
@@ -137,10 +137,7 @@ def main(argv=None) -> int:
     ))
     device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    try:
-        os.makedirs(args.out, exist_ok=True)
-    except OSError as error:
-        fail(parser, f"--out {args.out}: {error.strerror or error}")
+    made_folder(parser, args.out)
     report = run(args.out, device=device, resolution=args.resolution, significant_wave_height=args.hs,
                  peak_period=args.tp, seconds=args.seconds)
     print(f"ocean on {report['device']}: Hs on the grid {report['grid_hs']:.3f} m, measured {report['measured_hs']:.3f} m, "

@@ -24,10 +24,10 @@ from ocean_warp.cli_support import (
     add_device_argument,
     check_options,
     checked_device,
-    fail,
     finite_above,
     finite_at_least,
     job_parser,
+    made_folder,
     plural,
 )
 from ocean_warp.eboat import EBoat
@@ -99,10 +99,7 @@ def main(argv=None) -> int:
     ))
     device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    try:
-        os.makedirs(args.out, exist_ok=True)
-    except OSError as error:
-        fail(parser, f"--out {args.out}: {error.strerror or error}")
+    made_folder(parser, args.out)
     eboat = EBoat()
     start = time.perf_counter()
     result = speed_polar(wind_speeds=args.wind_speeds, wind_angles_deg=np.arange(0.0, 180.0 + 1e-9, args.angle_step),

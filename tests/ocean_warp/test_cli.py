@@ -175,3 +175,17 @@ def test_no_driver_warning_on_the_command_line(tmp_path):
 def test_plural():
     assert plural(1, "run") == "1 run" and plural(0, "run") == "0 runs" and plural(20, "run") == "20 runs"
     assert plural(1, "E-Boat") == "1 E-Boat" and plural(2, "child", "children") == "2 children"
+
+
+@pytest.mark.parametrize("job", ["ocean", "polar", "drop-hulls"])
+def test_an_out_folder_that_cannot_be_made_is_a_one_line_error(job, tmp_path, capsys):
+    """``--out`` below a file: exit status 2 and one line naming --out and the folder, nothing made."""
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder")
+    out = blocker / "sub"
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main([job, "--out", str(out)])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"ocean-warp {job}: error: --out {out}: "), err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]
