@@ -1,7 +1,9 @@
 """Reinforcement-learning environments on the E-Boat simulator (installed as ``ocean_warp.envs``).
 
-At the top: ``SailingEnv`` (``sailing_env``: N boats, one task, one captured decision step with same-step
-resets) and the task ids (``registration``). By role, in subpackages (each ``__init__`` says what it holds):
+At the top: ``BatchedEnv`` and ``EnvBuffers`` (``protocol``: the face of a batch of environments that
+training, evaluation and the adapters use), ``SailingEnv`` (``sailing_env``: N boats, one task, one captured
+decision step with same-step resets; it implements the protocol, as ``parallel``'s ``ShardedSailingEnv``
+does) and the task ids (``registration``). By role, in subpackages (each ``__init__`` says what it holds):
 
 - ``tasks``: ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours), ``MissionConfig`` (the
   six-waypoint "BCDACA" mission) and ``MissionSailConfig`` (the mission with the propeller off), and
@@ -15,7 +17,8 @@ resets) and the task ids (``registration``). By role, in subpackages (each ``__i
   policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``.
 """
 
-from .sailing_env import EnvBuffers, SailingEnv, environment_origins
+from .protocol import BatchedEnv, EnvBuffers
+from .sailing_env import SailingEnv, environment_origins
 from .tasks.task_configs import (
     BCDACA_ROUTE,
     MISSION_WAYPOINTS,
@@ -29,7 +32,7 @@ from .tasks.task_configs import (
     WaypointPlusConfig,
 )
 
-__all__ = ["SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
+__all__ = ["BatchedEnv", "SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
            "MissionConfig", "MissionSailConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
 
 from .interfaces.gym_env import SailingEnvSingle, SailingVectorEnv

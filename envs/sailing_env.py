@@ -10,9 +10,7 @@ arrays that torch reads through views bound in the constructor (``env.buffers``)
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from typing import Any
 
 import numpy as np
 import torch
@@ -20,7 +18,6 @@ import warp as wp
 
 from ocean_warp.device_structs import struct_from
 from ocean_warp.eboat import EBoatSimulator, Hydrostatics
-from ocean_warp.fleet import BoatStatus
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
@@ -35,51 +32,10 @@ from .tasks.task_kernels import (
     evaluate,
     observe,
 )
+from .protocol import EnvBuffers, episode_log
 from .tasks.task_configs import ObservationSet, TaskConfig
 
-__all__ = ["SailingEnv", "DecisionHook", "EnvBuffers", "environment_origins", "episode_log"]
-
-
-@dataclasses.dataclass(frozen=True)
-class EnvBuffers:
-    """torch views of the environment's Warp arrays (no copies), N environments."""
-
-    actions: Any
-    """(N, 3) float32: the last actions, in [-1, 1] (see ``ocean_warp.envs.tasks``)."""
-    policy_obs: Any
-    """(N, P) float32: what the policy sees now (after the same-step reset of ended environments)."""
-    critic_obs: Any
-    """(N, P + 12) float32: the policy's observation and privileged truth."""
-    final_policy_obs: Any
-    """(N, P) float32: the observation at the end of the last decision, before any reset."""
-    final_critic_obs: Any
-    """(N, P + 12) float32: likewise for the critic."""
-    reward: Any
-    """(N,) float32: the reward of the last decision."""
-    terminated: Any
-    """(N,) bool: the episode ended in a terminal state (waypoint or mission done, lost, flagged)."""
-    time_out: Any
-    """(N,) bool: the episode reached its time limit (not a terminal state)."""
-    done: Any
-    """(N,) bool: terminated or time_out; these environments were reset in the same step."""
-    episode_length: Any
-    """(N,) int32: decisions taken in the current episode."""
-    episode_return: Any
-    """(N,) float32: reward summed over the current episode."""
-    target: Any
-    """(N, 3) float32: world position of each environment's current waypoint [m]."""
-    origin: Any
-    """(N, 3) float32: world position of each environment's origin [m]."""
-    final_return: Any
-    """(N,) float32: return of the last episode that ended in each environment."""
-    final_length: Any
-    """(N,) int32: its length in decisions."""
-    final_success: Any
-    """(N,) float32: 1 if it reached its last waypoint."""
-    final_status: Any
-    """(N,) int32: the simulator's ``BoatStatus`` bits when it ended (0: healthy)."""
-    final_waypoints: Any
-    """(N,) int32: waypoints it reached."""
+__all__ = ["SailingEnv", "DecisionHook", "environment_origins"]
 
 
 def environment_origins(count: int, tile_size: float, spread: bool) -> np.ndarray:
@@ -119,6 +75,10 @@ class SailingEnv:
         for _ in range(1000):
             env.step(policy(obs))
             env.buffers.reward, env.buffers.done       # views, too
+
+    It implements :class:`~ocean_warp.envs.protocol.BatchedEnv`, the face training, evaluation and the
+    adapters use; ``simulator`` (the :class:`~ocean_warp.eboat.EBoatSimulator`) is there for recorders and
+    tests that look inside one decision (:class:`DecisionHook`).
     """
 
     num_actions = 3
@@ -178,18 +138,28 @@ class SailingEnv:
         self.final_success = zeros(n)
         self.final_status = zeros(n, int)
         self.final_waypoints = zeros(n, int)
+        self.propeller_level = zeros(n, self.simulator.control.propeller.dtype)
+        """(N,) the propeller level the last decision applied (copied before a reset stops the motor)."""
+        self.final_position = zeros(n, wp.vec3)
+        """(N,) the boats' positions after the last decision's physics, before any reset [m]."""
+        self.final_orientation = zeros(n, wp.quat)
         self._everyone = wp.ones(n, dtype=wp.int32, device=device)
 
-        view = wp.to_torch
+        view, state = wp.to_torch, self.simulator.state
         self.buffers = EnvBuffers(
             actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
             final_policy_obs=view(self.final_policy_obs), final_critic_obs=view(self.final_critic_obs),
             reward=view(self.reward), terminated=view(self.terminated), time_out=view(self.time_out),
             done=view(self.done), episode_length=view(self.episode_length), episode_return=view(self.episode_return),
-            target=view(self.target_world), origin=view(self.origin), final_return=view(self.final_return),
+            target=view(self.target_world), origin=view(self.origin), route=view(self.route),
+            waypoint_index=view(self.target_index), position=view(state.position),
+            orientation=view(state.orientation), velocity=view(state.velocity),
+            wind_velocity=view(state.wind_velocity), wind_direction=view(state.wind_mean_direction),
+            propeller_level=view(self.propeller_level), final_position=view(self.final_position),
+            final_orientation=view(self.final_orientation), final_return=view(self.final_return),
             final_length=view(self.final_length), final_success=view(self.final_success),
             final_status=view(self.final_status), final_waypoints=view(self.final_waypoints))
-        """torch views of the results, bound once (see :class:`EnvBuffers`)."""
+        """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`)."""
         self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
                                                    capture=self.task.simulator.capture_graph)
         self.reset()
@@ -214,13 +184,17 @@ class SailingEnv:
         """The launches of one decision (what :meth:`step` replays): actions to commands, the physics steps
         and the task's kernels, with ``hook``'s launches at its three points (launch only; graph-safe when
         the hook's are)."""
+        state = self.simulator.state
         self.launch_actions()
+        wp.copy(self.propeller_level, self.simulator.control.propeller)
         if hook is not None:
             hook.after_actions(self)
         for step in range(self.steps_per_decision):
             self.simulator.launch_step()
             if hook is not None:
                 hook.after_physics_step(self, step)
+        wp.copy(self.final_position, state.position)
+        wp.copy(self.final_orientation, state.orientation)
         if hook is not None:
             hook.after_physics(self)
         self.launch_task()
@@ -281,10 +255,27 @@ class SailingEnv:
             self._observe(self.policy_obs, self.critic_obs)
             wp.copy(self.final_policy_obs, self.policy_obs)
             wp.copy(self.final_critic_obs, self.critic_obs)
+            wp.copy(self.final_position, self.simulator.state.position)
+            wp.copy(self.final_orientation, self.simulator.state.orientation)
+            wp.copy(self.propeller_level, self.simulator.control.propeller)
 
     def episode_log(self) -> dict[str, torch.Tensor]:
-        """Statistics of the episodes that ended in the last step, see :func:`episode_log`."""
+        """Statistics of the episodes that ended in the last step, see :func:`~ocean_warp.envs.protocol.episode_log`."""
         return episode_log(self.buffers)
+
+    @property
+    def significant_wave_height(self) -> float:
+        """The sea's significant wave height as the wave grid holds it [m] (``Ocean.significant_wave_height``)."""
+        return self.simulator.ocean.significant_wave_height
+
+    def set_significant_wave_height(self, hs: float) -> float:
+        """Rescale the sea to significant wave height ``hs`` [m] (``Ocean.set_significant_wave_height``: the
+        same spectrum shape, directions and phases); returns the height the grid holds."""
+        self.simulator.ocean.set_significant_wave_height(hs)
+        return self.significant_wave_height
+
+    def close(self) -> None:
+        """Nothing to release (the protocol's ``close``: Warp frees the arrays with the env)."""
 
     def _start_height(self) -> float:
         if self.task.start_height is not None:
@@ -292,26 +283,6 @@ class SailingEnv:
         if self.task.simulator.boat.hydrostatics is Hydrostatics.POINTS:
             return 0.0
         return self.simulator.eboat.rest_height("cpu", self.task.simulator.hydrodynamics)
-
-
-def episode_log(b: EnvBuffers) -> dict[str, torch.Tensor]:
-    """Statistics of the episodes that ended in the last step (one host synchronisation to find them),
-    from an env's ``buffers``: mean return and length, the rates of success and of each simulator flag,
-    and how many ended. Keys start with "/" (rsl-rl's namespace convention)."""
-    ended = torch.nonzero(b.done, as_tuple=False).squeeze(1)
-    status = b.final_status.index_select(0, ended)
-    log = {
-        "/episode/return": b.final_return.index_select(0, ended),
-        "/episode/length": b.final_length.index_select(0, ended).float(),
-        "/episode/success_rate": b.final_success.index_select(0, ended),
-        "/episode/waypoints": b.final_waypoints.index_select(0, ended).float(),
-        "/episode/time_out_rate": b.time_out.index_select(0, ended).float(),
-    }
-    for name, bit in (("capsized", BoatStatus.CAPSIZED), ("nonfinite", BoatStatus.NONFINITE),
-                      ("sunk", BoatStatus.SUNK), ("flying", BoatStatus.FLYING), ("bad_input", BoatStatus.BAD_INPUT)):
-        log[f"/episode/{name}_rate"] = ((status & bit) != 0).float()
-    log["/episode/ended"] = ended.numel() * torch.ones((), device=b.done.device)
-    return log
 
 
 def _task_parameters(task: TaskConfig) -> TaskParameters:

@@ -95,6 +95,7 @@ from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
 from ..controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
+from ..protocol import BatchedEnv
 from ..sailing_env import DecisionHook, SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
@@ -120,15 +121,15 @@ own_tacks / own_gybes are the controller's own counts where it keeps them (the a
 
 
 class Controller(Protocol):
-    """What sails the runs: ``reset(env)`` once before the batch starts, ``act(env)`` before each decision
-    (it writes ``env.actions`` / ``env.buffers.actions``), a ``name``. Optionally ``own_counts()``: its own
+    """What sails the runs of a :class:`~ocean_warp.envs.protocol.BatchedEnv`: ``reset(env)`` once before the
+    batch starts, ``act(env)`` before each decision (it writes ``env.buffers.actions``), a ``name``. Optionally ``own_counts()``: its own
     per-run counters ({"tacks": (N,), "gybes": (N,)}; NaN for runs it keeps none for), read when runs end."""
 
     name: str
 
-    def reset(self, env: SailingEnv) -> None: ...
+    def reset(self, env: BatchedEnv) -> None: ...
 
-    def act(self, env: SailingEnv) -> None: ...
+    def act(self, env: BatchedEnv) -> None: ...
 
 
 class PolicyController:
@@ -140,7 +141,7 @@ class PolicyController:
         self.policy = policy
         self.name = name
 
-    def reset(self, env: SailingEnv) -> None:
+    def reset(self, env: BatchedEnv) -> None:
         wanted, given = ObservationSet(self.policy.observation), ObservationSet(env.task.observation)
         if given is not wanted or env.num_policy_obs != self.policy.num_obs:
             raise ValueError(f"PolicyController: the policy reads the {wanted.value!r} observation "
@@ -148,15 +149,16 @@ class PolicyController:
                              f"({env.num_policy_obs}); build the task with observation={wanted.value!r}")
         self.policy.to(env.torch_device).eval()
 
-    def act(self, env: SailingEnv) -> None:
+    def act(self, env: BatchedEnv) -> None:
         with torch.inference_mode():
             env.buffers.actions.copy_(self.policy(env.buffers.policy_obs))
 
 
 class AutopilotController:
     """The classical :class:`~ocean_warp.envs.controllers.sailing_autopilot.SailingAutopilot` (``config`` None: its defaults)
-    sailing to each run's current waypoint. It forgets a run's tack side, integrator and counters when the
-    run starts a new episode (``env.reset_mask`` of the last step). On a task without propeller
+    sailing to each run's current waypoint (``env.buffers.target``), reading the boats from the buffers
+    (:meth:`SailingAutopilot.for_env`). It forgets a run's tack side, integrator and counters when the
+    run starts a new episode (``env.buffers.done`` of the last step). On a task without propeller
     (``TaskConfig.propeller`` False) it sails without the motor: its config's ``assist_level`` and
     ``propeller_level`` are set to 0 (the environment would ignore them anyway)."""
 
@@ -167,9 +169,14 @@ class AutopilotController:
         self.name = name
         self.pilot: SailingAutopilot | None = None
 
-    def reset(self, env: SailingEnv) -> None:
-        self.pilot = SailingAutopilot(env.simulator, self.config_for(env.task))
+    def reset(self, env: BatchedEnv) -> None:
+        self.pilot = SailingAutopilot.for_env(env, self.config_for(env.task))
         self.pilot.reset()
+        buffers = env.buffers
+        self._targets = wp.from_torch(buffers.target, dtype=wp.vec3)
+        self._actions = wp.from_torch(buffers.actions)
+        self._restarted = torch.zeros(env.num_envs, dtype=torch.int32, device=env.torch_device)
+        self._restarted_mask = wp.from_torch(self._restarted)
 
     def config_for(self, task: TaskConfig) -> AutopilotConfig:
         """The autopilot's config on ``task``: this controller's, with the motor off (assist and propeller
@@ -180,11 +187,13 @@ class AutopilotController:
             return preset(decision_period=task.decision_period)
         return self.config if task.propeller else dataclasses.replace(self.config, assist_level=0, propeller_level=0)
 
-    def act(self, env: SailingEnv) -> None:
+    def act(self, env: BatchedEnv) -> None:
         # The runs that ended in the last step started new episodes in it: forget their side and counts
         # (after their counts were read: the runner reads own_counts() right after the step).
-        self.pilot.reset(env.reset_mask)
-        self.pilot.act(env.target_world, env.actions)
+        self._restarted.copy_(env.buffers.done)
+        with ordered_with_torch(self.pilot.device):
+            self.pilot.reset(self._restarted_mask)
+            self.pilot.act(self._targets, self._actions)
 
     def own_counts(self) -> dict[str, np.ndarray]:
         """The autopilot's own tack and gybe counters since each run's episode began."""
@@ -332,7 +341,7 @@ class FleetController:
         self._masks: list = []
         self._actions = None
 
-    def reset(self, env: SailingEnv) -> None:
+    def reset(self, env: BatchedEnv) -> None:
         if self.groups[0][1].shape[0] != env.num_envs:
             raise ValueError(f"FleetController: masks for {self.groups[0][1].shape[0]} runs, the environment has "
                              f"{env.num_envs}")
@@ -341,7 +350,7 @@ class FleetController:
         self._masks = [torch.as_tensor(mask, device=env.torch_device).unsqueeze(1) for _, mask in self.groups]
         self._actions = torch.zeros_like(env.buffers.actions)
 
-    def act(self, env: SailingEnv) -> None:
+    def act(self, env: BatchedEnv) -> None:
         actions = env.buffers.actions
         for (controller, _), mask in zip(self.groups, self._masks):
             controller.act(env)
@@ -362,19 +371,19 @@ class FleetController:
 
 
 class RecordedDecision(DecisionHook):
-    """One decision of ``env``, launched by ``SailingEnv.launch_decision`` as ``SailingEnv.step`` launches it
-    (and captured as one graph likewise), with this object as its :class:`DecisionHook`: each boat's
-    propeller command copied out after the actions kernel and its pose
-    after the physics, before the task's kernels restart the runs that ended: ``env.step()`` keeps no
-    pose from before that reset, and the last decision of a run is where it reached its last waypoint,
-    capsized or was lost. A test checks that it stays step for step the same as ``env.step()``.
-
-    With ``frames_per_decision`` F > 1 it also keeps F evenly spaced frames inside the decision (after
-    steps S/F, 2 S/F, ..., S of its S physics steps; F must divide S): pose, boom and rudder angles of
-    every boat, for a recorder that wants more than one frame a second. The copies are part of the
-    launch sequence (graph-safe: fixed slots, no host work)."""
+    """One decision of a :class:`SailingEnv` with ``frames_per_decision`` F evenly spaced frames kept from
+    inside it (after steps S/F, 2 S/F, ..., S of its S physics steps; F must divide S): pose, boom and
+    rudder angles of every boat, for a recorder that wants more than one frame a decision (the USD
+    stages). Launched by ``SailingEnv.launch_decision`` with this object as its :class:`DecisionHook`, as
+    ``SailingEnv.step`` launches it (and captured as one graph likewise); the copies are part of the launch
+    sequence (graph-safe: fixed slots, no host work). A test checks that it stays step for step the same
+    as ``env.step()``. It needs a SailingEnv: it looks inside a decision, which the batched-env protocol
+    does not show (its buffers hold the pose at the end of the decision: ``final_position``)."""
 
     def __init__(self, env: SailingEnv, frames_per_decision: int = 1):
+        if not isinstance(env, SailingEnv):
+            raise ValueError(f"RecordedDecision: env must be a SailingEnv (frames come from inside its decision), "
+                             f"got {env!r}")
         steps = env.steps_per_decision
         if isinstance(frames_per_decision, bool) or not isinstance(frames_per_decision, int) \
                 or not 1 <= frames_per_decision <= steps or steps % frames_per_decision:
@@ -383,12 +392,6 @@ class RecordedDecision(DecisionHook):
         self.env = env
         self.frames_per_decision = frames_per_decision
         n, device = env.num_envs, env.device
-        self.propeller = wp.zeros(n, dtype=env.simulator.control.propeller.dtype, device=device)
-        """(N,) propeller level (-5 ... 5) commanded at the last decision (0 on a task without propeller)."""
-        self.position = wp.zeros(n, dtype=wp.vec3, device=device)
-        """(N,) world position after the last decision's physics [m]."""
-        self.orientation = wp.zeros(n, dtype=wp.quat, device=device)
-        """(N,) orientation (x, y, z, w) after the last decision's physics."""
         frames = frames_per_decision * n
         self.frame_position = wp.zeros(frames, dtype=wp.vec3, device=device)
         """(F * N,) positions [m] at the decision's frames, frame-major."""
@@ -402,11 +405,8 @@ class RecordedDecision(DecisionHook):
     def _launch(self) -> None:
         self.env.launch_decision(self)
 
-    # --- DecisionHook: the copies, launched inside the decision ------------------------------------
-    def after_actions(self, env: SailingEnv) -> None:
-        wp.copy(self.propeller, env.simulator.control.propeller)
-
     def after_physics_step(self, env: SailingEnv, step: int) -> None:
+        """The DecisionHook's copies into the frame slots, launched inside the decision."""
         n, every = env.num_envs, env.steps_per_decision // self.frames_per_decision
         if (step + 1) % every:
             return
@@ -415,10 +415,6 @@ class RecordedDecision(DecisionHook):
                                (state.boom_angle, self.frame_boom_angle),
                                (state.rudder_angle, self.frame_rudder_angle)):
             wp.copy(target, source, dest_offset=offset, count=n)
-
-    def after_physics(self, env: SailingEnv) -> None:
-        wp.copy(self.position, env.simulator.state.position)
-        wp.copy(self.orientation, env.simulator.state.orientation)
 
     def __call__(self) -> None:
         with ordered_with_torch(self.env.device):
@@ -434,29 +430,32 @@ class RecordedDecision(DecisionHook):
                 "rudder_angle": self.frame_rudder_angle.numpy().reshape(f, n)}
 
 
-def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = False, frames_per_decision: int = 1,
+def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = False, frames_per_decision: int = 1,
                  on_decision: Callable[[int, RecordedDecision], None] | None = None) -> ControllerResult:
-    """Restart ``env`` from its seed (``env.reset(seed=env.seed)``: the same starts, waves and gusts every
-    time) and let ``controller`` sail every run until its first episode ends; record the paths. Any task:
-    a run's waypoints are the task's route, or the one it drew at its start (single-waypoint tasks).
+    """Restart ``env`` (any :class:`~ocean_warp.envs.protocol.BatchedEnv`) from its seed
+    (``env.reset(seed=env.seed)``: the same starts, waves and gusts every time) and let ``controller`` sail
+    every run until its first episode ends; record the paths from the env's buffers. Any task: a run's
+    waypoints are the task's route, or the one it drew at its start (single-waypoint tasks).
 
-    ``on_decision(k, decision)``, if given, is called after decision k (0, 1, ...) with the
-    :class:`RecordedDecision`, whose ``frames()`` hold ``frames_per_decision`` frames of every boat
-    from inside it (e.g. for a USD recorder); runs that already ended keep sailing new episodes there."""
+    ``on_decision(k, decision)``, if given, is called after decision k (0, 1, ...) with a
+    :class:`RecordedDecision` (``env`` must then be a SailingEnv), whose ``frames()`` hold
+    ``frames_per_decision`` frames of every boat from inside it (e.g. for a USD recorder); runs that
+    already ended keep sailing new episodes there."""
+    decision = RecordedDecision(env, frames_per_decision) if on_decision is not None else None
     env.reset(seed=env.seed)
     controller.reset(env)
-    routes = env.route.numpy()[:, :, :2].astype(np.float64)  # the first episodes' waypoints, drawn by the reset
-    decision = RecordedDecision(env, frames_per_decision)
+    b = env.buffers
+    host = lambda tensor: tensor.cpu().numpy()  # noqa: E731
+    routes = host(b.route)[:, :, :2].astype(np.float64)  # the first episodes' waypoints, drawn by the reset
     n, limit = env.num_envs, env.max_episode_length
-    state = env.simulator.state
-    origin = env.origin.numpy()[:, :2].astype(np.float64)
+    origin = host(b.origin)[:, :2].astype(np.float64)
     xy = np.full((limit + 1, n, 2), np.nan)
     heading = np.full((limit + 1, n), np.nan)
     reached = np.zeros((limit + 1, n), dtype=np.int64)
     levels = np.zeros((limit, n), dtype=np.int64)
-    xy[0] = state.position.numpy()[:, :2] - origin
-    heading[0] = roll_pitch_yaw(state.orientation.numpy())[:, 2]
-    wind_direction = state.wind_mean_direction.numpy().astype(np.float64).copy()
+    xy[0] = host(b.position)[:, :2] - origin
+    heading[0] = roll_pitch_yaw(host(b.orientation))[:, 2]
+    wind_direction = host(b.wind_direction).astype(np.float64)
     outcome = {name: np.zeros(n, dtype=kind) for name, kind in (
         ("success", bool), ("time_s", np.float64), ("waypoints", np.int64), ("status", np.int64),
         ("time_out", bool))}
@@ -471,25 +470,26 @@ def sail_mission(env: SailingEnv, controller: Controller, *, progress: bool = Fa
               dynamic_ncols=True) as bar:
         for k in range(limit):
             controller.act(env)
-            decision()
-            if on_decision is not None:
+            if decision is not None:
+                decision()
                 on_decision(k, decision)
+            else:
+                env.step()
             active = ~finished
-            levels[k, active] = decision.propeller.numpy()[active]
-            xy[k + 1, active] = decision.position.numpy()[active, :2] - origin[active]
-            heading[k + 1, active] = roll_pitch_yaw(decision.orientation.numpy())[active, 2]
-            reached[k + 1] = env.target_index.numpy()
+            levels[k, active] = host(b.propeller_level)[active]
+            xy[k + 1, active] = host(b.final_position)[active, :2] - origin[active]
+            heading[k + 1, active] = roll_pitch_yaw(host(b.final_orientation))[active, 2]
+            reached[k + 1] = host(b.waypoint_index)
             length[active] = k + 1
-            done = env.done.numpy() & active
+            done = host(b.done) & active
             if done.any():
-                b = env.buffers
-                final_waypoints = b.final_waypoints.cpu().numpy()
+                final_waypoints = host(b.final_waypoints)
                 reached[k + 1, done] = final_waypoints[done]
-                outcome["success"][done] = b.final_success.cpu().numpy()[done] > 0.5
-                outcome["time_s"][done] = b.final_length.cpu().numpy()[done] * env.decision_period
+                outcome["success"][done] = host(b.final_success)[done] > 0.5
+                outcome["time_s"][done] = host(b.final_length)[done] * env.decision_period
                 outcome["waypoints"][done] = final_waypoints[done]
-                outcome["status"][done] = b.final_status.cpu().numpy()[done]
-                outcome["time_out"][done] = b.time_out.cpu().numpy()[done]
+                outcome["status"][done] = host(b.final_status)[done]
+                outcome["time_out"][done] = host(b.time_out)[done]
                 if own_counts is not None:
                     counts = own_counts()
                     outcome["own_tacks"][done] = counts["tacks"][done]

@@ -13,12 +13,13 @@ kernels are in ``ocean_warp.envs.controllers.autopilot_kernels``. The defaults w
 E-Boat makes 0.2-0.3 m/s to windward there and fails most tacks (lee helm, little way on), and it
 completed none of 20 missions; with the motor assisting on beats it completes them.
 
-It reads the truth of the simulator (position, orientation, velocity, current true wind): a
-baseline, not a sensor-driven controller.
+It reads the boats' truth (position, orientation, velocity, current true wind): a baseline, not a
+sensor-driven controller. It takes them from a simulator's state, or from an environment's buffers
+(:meth:`SailingAutopilot.for_env`, any :class:`~ocean_warp.envs.protocol.BatchedEnv`).
 
 Example::
 
-    autopilot = SailingAutopilot(sim)
+    autopilot = SailingAutopilot(sim.state)
     autopilot.reset()
     autopilot.act(targets, actions)        # targets (N,) vec3 world [m]; actions (N, 3) float
 """
@@ -32,6 +33,8 @@ import warp as wp
 
 from ocean_warp.device_structs import struct_from
 from ocean_warp.validation import require_in_range, require_int_in_range, require_non_negative, require_positive
+
+from ocean_warp.kernels.spatial import vec6
 
 from .autopilot_kernels import AutopilotParameters, reset_autopilot, sail_to_targets
 
@@ -184,19 +187,32 @@ def _right_open_range(name: str, value, low: float, high: float) -> float:
     return value
 
 
-class SailingAutopilot:
-    """The autopilot for every boat of an :class:`~ocean_warp.eboat.EBoatSimulator` (its ``state`` arrays are
-    read at each call; nothing is copied). Per-boat memory on the device: ``side`` (+1 starboard tack,
-    -1 port, 0 unset), ``integral`` (heading integrator [rad s]), ``tacks`` and ``gybes`` (counts since the
-    boat's last reset) and ``course`` (the course steered at the last decision [rad])."""
+@dataclasses.dataclass(frozen=True)
+class EnvBoats:
+    """Warp views of the boats' truth in an environment's buffers (what :class:`SailingAutopilot` reads)."""
 
-    def __init__(self, simulator, config: AutopilotConfig | None = None):
-        self.simulator = simulator
+    position: wp.array
+    orientation: wp.array
+    velocity: wp.array
+    wind_velocity: wp.array
+
+
+class SailingAutopilot:
+    """The autopilot for a batch of boats whose truth ``boats`` holds: an
+    :class:`~ocean_warp.eboat.EBoatState` (``simulator.state``) or any object with the Warp arrays
+    ``position`` (N,) vec3 [m], ``orientation`` (N,) quat, ``velocity`` (N,) vec6 (Fossen's nu) and
+    ``wind_velocity`` (N,) vec3 [m/s], world frame; they are read at each call, nothing is copied.
+    Per-boat memory on the device: ``side`` (+1 starboard tack, -1 port, 0 unset), ``integral`` (heading
+    integrator [rad s]), ``tacks`` and ``gybes`` (counts since the boat's last reset) and ``course`` (the
+    course steered at the last decision [rad])."""
+
+    def __init__(self, boats, config: AutopilotConfig | None = None):
+        self.boats = boats
         self.config = config if config is not None else AutopilotConfig()
         if not isinstance(self.config, AutopilotConfig):
             raise ValueError(f"SailingAutopilot: config must be an AutopilotConfig, got {self.config!r}")
-        self.device = simulator.device
-        self.count = simulator.count
+        self.device = boats.position.device
+        self.count = boats.position.shape[0]
         self.parameters = self.config.parameters()
         zeros = lambda dtype: wp.zeros(self.count, dtype=dtype, device=self.device)  # noqa: E731
         self.side = zeros(wp.int32)
@@ -215,13 +231,24 @@ class SailingAutopilot:
         self.course = zeros(float)
         """(N,) course steered at the last decision [rad, yaw from +x]."""
 
+    @classmethod
+    def for_env(cls, env, config: AutopilotConfig | None = None) -> SailingAutopilot:
+        """The autopilot for every boat of ``env`` (a :class:`~ocean_warp.envs.protocol.BatchedEnv`), reading
+        the truth from its buffers (Warp views of them, bound here)."""
+        b = env.buffers
+        boats = EnvBoats(position=wp.from_torch(b.position, dtype=wp.vec3),
+                         orientation=wp.from_torch(b.orientation, dtype=wp.quat),
+                         velocity=wp.from_torch(b.velocity, dtype=vec6),
+                         wind_velocity=wp.from_torch(b.wind_velocity, dtype=wp.vec3))
+        return cls(boats, config)
+
     def act(self, targets: wp.array, actions: wp.array) -> None:
         """One decision: ``targets`` (N,) vec3 world positions [m] to sail to; writes ``actions`` (N, 3) in
         [-1, 1]. Launches only (no allocation, no host copy): safe inside a CUDA graph capture."""
-        state = self.simulator.state
+        boats = self.boats
         wp.launch(sail_to_targets, dim=self.count, device=self.device,
-                  inputs=[self.parameters, targets, state.position, state.orientation, state.velocity,
-                          state.wind_velocity],
+                  inputs=[self.parameters, targets, boats.position, boats.orientation, boats.velocity,
+                          boats.wind_velocity],
                   outputs=[self.side, self.integral, self.tacks, self.gybes, self.turn, self.stalled, self.course,
                            actions])
 

@@ -23,7 +23,7 @@ from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
 from ..sailing_env import SailingEnv
-from ..parallel.sharded import ShardedSailingEnv
+from ..protocol import BatchedEnv
 from ..registration import make_task_config
 
 __all__ = ["SailingVectorEnv", "SailingEnvSingle", "action_space", "observation_space", "to_numpy", "as_actions",
@@ -84,14 +84,17 @@ class SailingVectorEnv(gym.vector.VectorEnv):
         self._attach(build_sailing_env(task, num_envs, device, seed, max_episode_steps, task_overrides))
 
     @classmethod
-    def from_env(cls, env: SailingEnv | ShardedSailingEnv) -> SailingVectorEnv:
-        """Present an existing SailingEnv, or anything with its face (a ShardedSailingEnv), as a vector env
-        (not copied); :meth:`close` closes it where it has something to release."""
+    def from_env(cls, env: BatchedEnv) -> SailingVectorEnv:
+        """Present an existing :class:`~ocean_warp.envs.protocol.BatchedEnv` (a SailingEnv, a
+        ShardedSailingEnv) as a vector env (not copied); :meth:`close` closes it."""
+        if not isinstance(env, BatchedEnv):
+            raise ValueError(f"SailingVectorEnv.from_env: env must be a BatchedEnv (SailingEnv, ShardedSailingEnv), "
+                             f"got {env!r}")
         vector_env = cls.__new__(cls)
         vector_env._attach(env)
         return vector_env
 
-    def _attach(self, env: SailingEnv) -> None:
+    def _attach(self, env: BatchedEnv) -> None:
         self.env = env
         self.num_envs = env.num_envs
         self.metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": []}
@@ -103,9 +106,8 @@ class SailingVectorEnv(gym.vector.VectorEnv):
         self._device = torch.device(env.torch_device)
 
     def close_extras(self, **kwargs: Any) -> None:
-        """Close the env where it has something to release (a ShardedSailingEnv's workers)."""
-        if callable(close := getattr(self.env, "close", None)):
-            close()
+        """Close the env (a ShardedSailingEnv stops its workers)."""
+        self.env.close()
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
               ) -> tuple[np.ndarray, dict[str, Any]]:

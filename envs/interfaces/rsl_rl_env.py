@@ -1,6 +1,7 @@
 """The rsl-rl face of the batched sailing simulator: :class:`RslRlVecEnv` (``rsl_rl.env.VecEnv``).
 
-A thin adapter over one :class:`~ocean_warp.envs.sailing_env.SailingEnv`; it never loops over environments.
+A thin adapter over one :class:`~ocean_warp.envs.protocol.BatchedEnv` (a SailingEnv, a ShardedSailingEnv); it never
+loops over environments.
 Rewards, dones, time-outs and the episode counter are the env's Warp-backed torch views, handed out
 as they are (zero copy). Observations are the one exception, and deliberately so: rsl-rl's PPO keeps
 the observation TensorDict it acted on (``PPO.act``) and copies it into its rollout storage only in
@@ -18,13 +19,13 @@ from rsl_rl.env import VecEnv
 from tensordict import TensorDict
 
 from ..sailing_env import SailingEnv
-from ..parallel.sharded import ShardedSailingEnv
+from ..protocol import BatchedEnv
 
 __all__ = ["RslRlVecEnv"]
 
 
 class RslRlVecEnv(VecEnv):
-    """A :class:`SailingEnv` presented to rsl-rl (``OnPolicyRunner``).
+    """A :class:`~ocean_warp.envs.protocol.BatchedEnv` presented to rsl-rl (``OnPolicyRunner``).
 
     Observation groups: ``"policy"`` (what the boat's sensors give, shape (N, P)) and ``"critic"``
     (privileged truth, shape (N, C)); map them in the runner config with
@@ -36,11 +37,13 @@ class RslRlVecEnv(VecEnv):
     of timed-out envs and averages the log tensors. The runner never calls :meth:`reset`.
 
     Args:
-        env: the batched simulator to present, a SailingEnv or anything with its face (a
-            ShardedSailingEnv); the adapter holds it, it does not copy it.
+        env: the batched environment to present (a :class:`~ocean_warp.envs.protocol.BatchedEnv`: a
+            SailingEnv or a ShardedSailingEnv); the adapter holds it, it does not copy it.
     """
 
-    def __init__(self, env: SailingEnv | ShardedSailingEnv) -> None:
+    def __init__(self, env: BatchedEnv) -> None:
+        if not isinstance(env, BatchedEnv):
+            raise ValueError(f"RslRlVecEnv: env must be a BatchedEnv (SailingEnv, ShardedSailingEnv), got {env!r}")
         self.env = env
         self.num_envs = env.num_envs
         self.num_actions = env.num_actions
@@ -136,7 +139,5 @@ class RslRlVecEnv(VecEnv):
         return self._snapshot(), {}
 
     def close(self) -> None:
-        """Close the env where it has something to release (a ShardedSailingEnv's workers); a SailingEnv's
-        memory goes with the object."""
-        if callable(close := getattr(self.env, "close", None)):
-            close()
+        """Close the env (a ShardedSailingEnv stops its workers; a SailingEnv's memory goes with the object)."""
+        self.env.close()

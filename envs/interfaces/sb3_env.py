@@ -29,7 +29,7 @@ except ImportError as error:  # pragma: no cover - depends on the installed extr
         'pip install -e ".[sb3]"  (or: pip install stable-baselines3)'
     ) from error
 
-from ..sailing_env import SailingEnv
+from ..protocol import BatchedEnv
 from .gym_env import as_actions, build_sailing_env, action_space, observation_space, to_numpy
 
 __all__ = ["Sb3VecEnv"]
@@ -39,8 +39,9 @@ class Sb3VecEnv(VecEnv):
     """A fleet of boats behind SB3's ``VecEnv`` API.
 
     Args:
-        task: task id ("EBoatWaypoint-v0", ...) or task config, or a SailingEnv to present as it is.
-        num_envs: number of boats (ignored when ``task`` is a SailingEnv).
+        task: task id ("EBoatWaypoint-v0", ...) or task config, or a BatchedEnv (SailingEnv, ShardedSailingEnv)
+            to present as it is.
+        num_envs: number of boats (ignored when ``task`` is an env).
         device: Warp device of the simulator; SB3 gets numpy either way.
         seed: seed of the per-env random streams (``seed()`` then ``reset()`` re-seeds them).
         max_episode_steps: episode length limit [decisions]; None keeps the task's.
@@ -53,7 +54,7 @@ class Sb3VecEnv(VecEnv):
 
     def __init__(self, task: Any = "EBoatWaypoint-v0", num_envs: int = 1, device: str = "cpu", seed: int = 0,
                  max_episode_steps: int | None = None, **task_overrides: Any) -> None:
-        if isinstance(task, SailingEnv):
+        if isinstance(task, BatchedEnv):
             self.env = task
         else:
             self.env = build_sailing_env(task, num_envs, device, seed, max_episode_steps, task_overrides)
@@ -109,7 +110,8 @@ class Sb3VecEnv(VecEnv):
         return observations, rewards, dones, infos
 
     def close(self) -> None:
-        """Nothing to release: the simulator's memory goes with the object."""
+        """Close the env (a ShardedSailingEnv stops its workers; a SailingEnv's memory goes with the object)."""
+        self.env.close()
 
     def _all_indices(self, indices: VecEnvIndices) -> list[int]:
         return list(self._get_indices(indices))

@@ -29,7 +29,6 @@ raise RuntimeError naming it, after every other worker has been stopped. ``close
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import logging
 import os
 import signal
@@ -47,7 +46,8 @@ import warp as wp
 from ocean_warp.validation import require_int_in_range
 
 from ocean_warp.devices import init_warp
-from ..sailing_env import EnvBuffers, SailingEnv, episode_log
+from ..protocol import EnvBuffers, episode_log
+from ..sailing_env import SailingEnv
 from .shared_ocean import SharedOcean, ocean_updates_per_decision
 from ..tasks.task_kernels import POLICY_OBS, PRIVILEGED_OBS
 from ..tasks.task_configs import ObservationSet, TaskConfig
@@ -79,8 +79,11 @@ def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.d
             "final_policy_obs": ((p,), f32), "final_critic_obs": ((c,), f32), "reward": ((), f32),
             "terminated": ((), torch.bool), "time_out": ((), torch.bool), "done": ((), torch.bool),
             "episode_length": ((), i32), "episode_return": ((), f32), "target": ((3,), f32), "origin": ((3,), f32),
-            "final_return": ((), f32), "final_length": ((), i32), "final_success": ((), f32),
-            "final_status": ((), i32), "final_waypoints": ((), i32)}
+            "route": ((task.route_length, 3), f32), "waypoint_index": ((), i32), "position": ((3,), f32),
+            "orientation": ((4,), f32), "velocity": ((6,), f32), "wind_velocity": ((3,), f32),
+            "wind_direction": ((), f32), "propeller_level": ((), i32), "final_position": ((3,), f32),
+            "final_orientation": ((4,), f32), "final_return": ((), f32), "final_length": ((), i32),
+            "final_success": ((), f32), "final_status": ((), i32), "final_waypoints": ((), i32)}
 
 
 # --- the worker side ---------------------------------------------------------------------------------
@@ -126,8 +129,7 @@ class _Shard:
             self.publish()
             return None
         if command == "wave_height":
-            env.simulator.ocean.set_significant_wave_height(argument)
-            return env.simulator.ocean.significant_wave_height
+            return env.set_significant_wave_height(argument)
         if command == "crash":  # for tests: an exception inside a worker
             raise RuntimeError(f"crash requested: {argument}")
         raise ValueError(f"unknown command {command!r}")
@@ -145,7 +147,7 @@ def _worker_main(conn, shared: dict[str, torch.Tensor], ocean_slots: torch.Tenso
     init_warp()  # without Warp's no-driver warning from every worker of a machine without a GPU
     try:
         shard = _Shard(task, shared, first, count, seed, ocean_slots)
-        conn.send(("ok", shard.env.simulator.ocean.significant_wave_height))
+        conn.send(("ok", shard.env.significant_wave_height))
         while True:
             if not conn.poll(_PARENT_POLL_S):
                 if os.getppid() != parent_pid:
@@ -271,33 +273,12 @@ def _sigint_ignored():
         signal.signal(signal.SIGINT, previous)
 
 
-class _RemoteOcean:
-    """The part of ``Ocean`` that training uses, applied to every worker's ocean."""
-
-    def __init__(self, env: ShardedSailingEnv, significant_wave_height: float):
-        self._env = weakref.proxy(env)
-        self.significant_wave_height = significant_wave_height
-        """The sea's significant wave height as the grid holds it [m] (as ``Ocean.significant_wave_height``)."""
-
-    def set_significant_wave_height(self, hs: float) -> None:
-        """Change every worker's sea to a significant wave height of ``hs`` [m] (see ``Ocean``)."""
-        self.significant_wave_height = self._env._set_wave_height(float(hs))
-
-
-@dataclasses.dataclass(frozen=True)
-class _RemoteSimulator:
-    """Stands for ``SailingEnv.simulator`` where training reads it (``simulator.ocean``)."""
-
-    ocean: _RemoteOcean
-
-
 class ShardedSailingEnv:
     """``num_envs`` environments of ``task`` on the CPU, sharded over ``workers`` processes.
 
-    Presents SailingEnv's face: ``buffers`` (:class:`EnvBuffers` of shared-memory tensors, bound once),
-    ``step(actions)``, ``reset(seed)``, ``episode_log()``, ``num_envs``, ``num_actions``,
-    ``num_policy_obs``, ``num_critic_obs``, ``max_episode_length``, ``decision_period``, ``task``,
-    ``device``, ``torch_device`` and ``simulator.ocean.set_significant_wave_height``. Writes into
+    Implements :class:`~ocean_warp.envs.protocol.BatchedEnv`, as a SailingEnv does: ``buffers``
+    (:class:`EnvBuffers` of shared-memory tensors, bound once), ``step(actions)``, ``reset(seed)``,
+    ``episode_log()``, ``set_significant_wave_height``, ``close`` and the sizes and periods. Writes into
     ``buffers.actions`` and ``buffers.episode_length`` take effect at the next step, as in a SailingEnv.
 
     Example::
@@ -360,7 +341,7 @@ class ShardedSailingEnv:
         except BaseException:
             self.close()
             raise
-        self.simulator = _RemoteSimulator(_RemoteOcean(self, heights[0]))
+        self._significant_wave_height = heights[0]
 
     # --- SailingEnv's face -----------------------------------------------------------------------------
     def step(self, actions: torch.Tensor | None = None) -> None:
@@ -386,15 +367,20 @@ class ShardedSailingEnv:
         if seed is not None and self._ocean is not None:
             self._ocean.restart(0.0)  # the workers' clocks went back to zero
 
-    def _set_wave_height(self, hs: float) -> float:
-        """Every worker's sea (and the shared ocean's) to significant wave height ``hs`` [m]; returns the
-        wave height the grid holds."""
+    @property
+    def significant_wave_height(self) -> float:
+        """The sea's significant wave height as the wave grid holds it [m] (every worker's is the same)."""
+        return self._significant_wave_height
+
+    def set_significant_wave_height(self, hs: float) -> float:
+        """Every worker's sea (and the shared ocean's) to significant wave height ``hs`` [m] (see
+        ``SailingEnv.set_significant_wave_height``); returns the wave height the grid holds."""
         if self._ocean is not None:
             self._ocean.ocean.set_significant_wave_height(hs)  # a bad hs raises here, before any worker changes
-        height = self._command("wave_height", hs)[0]
+        self._significant_wave_height = self._command("wave_height", float(hs))[0]
         if self._ocean is not None:
             self._ocean.restart()
-        return height
+        return self._significant_wave_height
 
     def episode_log(self) -> dict[str, torch.Tensor]:
         """Statistics of the episodes that ended in the last step (see :func:`ocean_warp.envs.sailing_env.episode_log`)."""

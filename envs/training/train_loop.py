@@ -312,8 +312,7 @@ def _train(config: TrainConfig, ranks: Ranks, *, device: str, seed: int, run_dir
         history = [dict(row) for row in checkpoint.get("history", [])]
     if context.distributed:
         alg.broadcast_parameters()  # rank 0's fresh networks (a checkpoint gave every rank the same already)
-    ocean = env.simulator.ocean
-    base_sea_state = ocean.significant_wave_height
+    base_sea_state = env.significant_wave_height
 
     runner.logger.git_status_repos = []  # rsl-rl would store its own repository's git diff in the run
     with contextlib.redirect_stdout(io.StringIO()):
@@ -336,7 +335,7 @@ def _train(config: TrainConfig, ranks: Ranks, *, device: str, seed: int, run_dir
                                  first_env=context.first_env(num_envs))
             sea_state = curriculum.sea_state(seed, iteration)
             if sea_state is not None:
-                ocean.set_significant_wave_height(sea_state)
+                env.set_significant_wave_height(sea_state)
             tic = time.perf_counter()
             ended = torch.zeros((), device=vec.device)
             successes = torch.zeros((), device=vec.device)

@@ -15,7 +15,7 @@ import torch
 
 from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
-from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv
+from ocean_warp.envs import TASK_IDS, EnvBuffers, MissionConfig, SailingEnv
 from ocean_warp.envs.training import policies
 from ocean_warp.envs.apps.evaluation import (
     AutopilotController,
@@ -238,9 +238,9 @@ def test_tiny_evaluation_paths(tiny_evaluation):
 
 
 def test_recorded_decision_is_env_step(device):
-    """The runner's decision launches what ``SailingEnv.step`` launches (same buffers and states, decision
-    after decision, through a time-out and the reset it causes) and keeps the pose from before that
-    reset."""
+    """The recorder's decision launches what ``SailingEnv.step`` launches (every buffer and state equal,
+    decision after decision, through a time-out and the reset it causes); the buffers keep the pose and
+    the propeller level from before that reset, and the recorder's one frame is that pose."""
     task = tiny_mission(episode_time=3.0)
     stepped = SailingEnv(task, 3, device=device, seed=5)
     recorded = SailingEnv(task, 3, device=device, seed=5)
@@ -251,20 +251,24 @@ def test_recorded_decision_is_env_step(device):
         stepped.step(actions)
         recorded.buffers.actions.copy_(actions)
         decision()
-        for name in ("policy_obs", "critic_obs", "final_policy_obs", "reward", "terminated", "time_out", "done",
-                     "episode_length", "target", "final_length", "final_status", "final_waypoints"):
-            torch.testing.assert_close(getattr(recorded.buffers, name), getattr(stepped.buffers, name), rtol=0, atol=0,
-                                       msg=f"{name} after decision {k}")
+        for field in dataclasses.fields(EnvBuffers):
+            torch.testing.assert_close(getattr(recorded.buffers, field.name), getattr(stepped.buffers, field.name),
+                                       rtol=0, atol=0, msg=f"{field.name} after decision {k}")
         for name in ("position", "orientation", "velocity"):
             np.testing.assert_array_equal(getattr(recorded.simulator.state, name).numpy(),
                                           getattr(stepped.simulator.state, name).numpy())
-        before_reset = decision.position.numpy()
-        now = recorded.simulator.state.position.numpy()
+        before_reset = stepped.buffers.final_position.cpu().numpy()
+        np.testing.assert_array_equal(decision.frames()["position"][0], before_reset)
+        now = stepped.simulator.state.position.numpy()
+        commanded = np.trunc(5.0 * np.clip(actions[:, 0].cpu().numpy(), -1.0, 1.0))  # the task's a0 -> level map
+        np.testing.assert_array_equal(stepped.buffers.propeller_level.cpu().numpy(), commanded)
         if k == 2:  # every run timed out (3 s) and restarted near A: the recorded pose is from before
-            assert recorded.buffers.time_out.all()
+            assert stepped.buffers.time_out.all()
             assert np.all(np.linalg.norm(before_reset - now, axis=1) > 1.0)
+            assert np.all(stepped.simulator.control.propeller.numpy() == 0)  # the reset stopped the motor
         else:
             np.testing.assert_array_equal(before_reset, now)
+            np.testing.assert_array_equal(stepped.buffers.position.cpu().numpy(), now)
 
 
 def test_recorded_decision_frames_inside_the_decision(device):
@@ -293,7 +297,7 @@ def test_recorded_decision_frames_inside_the_decision(device):
         np.testing.assert_array_equal(frames["orientation"][f], orientation)
         np.testing.assert_array_equal(frames["boom_angle"][f], boom)
         np.testing.assert_array_equal(frames["rudder_angle"][f], rudder)
-    np.testing.assert_array_equal(frames["position"][-1], decision.position.numpy())
+    np.testing.assert_array_equal(frames["position"][-1], recorded.buffers.final_position.cpu().numpy())
     assert np.abs(np.diff(frames["rudder_angle"], axis=0)).max() > 0  # the rudder moves during the decision
     with pytest.raises(ValueError, match="frames_per_decision"):
         RecordedDecision(recorded, frames_per_decision=3)  # does not divide 20 steps
@@ -334,6 +338,30 @@ def test_fleet_controller_gives_each_run_its_controllers_actions(tmp_path):
     assert [row["own_tacks"] for row in theirs.run_rows()] == [int(v) for v in autopilot.own_tacks]
     with pytest.raises(ValueError, match="exactly one controller"):
         FleetController([(PolicyController(policy), mask), (AutopilotController(), mask)])
+
+
+def test_evaluation_over_a_sharded_env_is_the_same(tmp_path):
+    """Evaluation reads only the batched-env protocol: the policy and the autopilot sail 5 runs on a
+    ShardedSailingEnv of 2 workers exactly as on one SailingEnv (paths, propeller levels, outcomes and the
+    autopilot's own counters bit for bit), and a frame recorder, which looks inside a decision, asks for a
+    SailingEnv by name."""
+    from ocean_warp.envs.parallel.sharded import ShardedSailingEnv
+
+    random_policy_file(tmp_path / "random.pt")
+    task = tiny_mission(episode_time=40.0)
+    for controller in (PolicyController(load_policy(tmp_path / "random.pt")), AutopilotController()):
+        alone = sail_mission(SailingEnv(task, 5, device="cpu", seed=4), controller)
+        with ShardedSailingEnv(task, 5, workers=2, seed=4) as env:
+            sharded = sail_mission(env, controller)
+            with pytest.raises(ValueError, match="RecordedDecision: env must be a SailingEnv"):
+                sail_mission(env, controller, on_decision=lambda k, decision: None)
+        for mine, theirs in zip(sharded.paths, alone.paths):
+            for field in ("xy", "heading", "propeller", "reached"):
+                np.testing.assert_array_equal(getattr(mine, field), getattr(theirs, field), err_msg=field)
+        for field in ("success", "time_s", "waypoints", "status", "time_out", "wind_direction", "routes",
+                      "own_tacks", "own_gybes"):
+            np.testing.assert_array_equal(getattr(sharded, field), getattr(alone, field), err_msg=field)
+        assert max(len(path.xy) for path in alone.paths) > 10
 
 
 def test_progress_bar_ends_full_when_every_run_ends_early(capsys):

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -30,24 +29,20 @@ def wrap(angle):
 
 
 class FakeBoats:
-    """Just the ``state`` arrays the autopilot reads, set by hand for each boat."""
+    """Just the arrays the autopilot reads, set by hand for each boat."""
 
     def __init__(self, device, headings, *, positions=None, surge=0.0, roll=0.0, wind=(10.0, 0.0, 0.0)):
         n = len(headings)
-        self.device = wp.get_device(device)
-        self.count = n
         angles = np.column_stack([np.broadcast_to(roll, n), np.zeros(n), headings])
         velocity = np.zeros((n, 6), dtype=np.float32)
         velocity[:, 0] = surge
-        self.state = SimpleNamespace(
-            position=wp.array(np.zeros((n, 3)) if positions is None else positions, dtype=wp.vec3, device=device),
-            orientation=wp.array(quaternion_from_roll_pitch_yaw(angles), dtype=wp.quat, device=device),
-            velocity=wp.array(velocity, dtype=wp.types.vector(6, wp.float32), device=device),
-            wind_velocity=wp.array(np.tile(wind, (n, 1)), dtype=wp.vec3, device=device),
-        )
+        self.position = wp.array(np.zeros((n, 3)) if positions is None else positions, dtype=wp.vec3, device=device)
+        self.orientation = wp.array(quaternion_from_roll_pitch_yaw(angles), dtype=wp.quat, device=device)
+        self.velocity = wp.array(velocity, dtype=wp.types.vector(6, wp.float32), device=device)
+        self.wind_velocity = wp.array(np.tile(wind, (n, 1)), dtype=wp.vec3, device=device)
 
     def move(self, positions):
-        self.state.position.assign(np.asarray(positions, dtype=np.float32))
+        self.position.assign(np.asarray(positions, dtype=np.float32))
 
 
 def decide(pilot, targets, device):
@@ -185,7 +180,7 @@ def sail(device, starts, headings, targets, seconds, *, wind=10.0, config=None, 
     sim = EBoatSimulator(sim_config, n, device=device)
     config = config if config is not None else AutopilotConfig()
     sim.reset(position=starts, heading=headings, velocity=[1.0, 0, 0, 0, 0, 0], sheet=45.0 * DEG)
-    pilot = SailingAutopilot(sim, config)
+    pilot = SailingAutopilot(sim.state, config)
     actions = wp.zeros((n, 3), dtype=float, device=device)
     target_array = wp.array(np.asarray(targets, dtype=np.float32), dtype=wp.vec3, device=device)
     steps = int(round(config.decision_period / sim_config.dt))

@@ -16,15 +16,14 @@ import torch
 
 from ocean_warp import WindConfig
 from ocean_warp.eboat import Hydrostatics
-from ocean_warp.envs import SailingEnv, StartConfig, WaypointConfig
+from ocean_warp.envs import BatchedEnv, EnvBuffers, SailingEnv, StartConfig, WaypointConfig
 from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv
 from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 from ocean_warp.envs.parallel.sharded import ShardedSailingEnv, shard_bounds
 from ocean_warp.sensors import SensorConfig
 
-COMPARED = ("policy_obs", "critic_obs", "final_policy_obs", "final_critic_obs", "reward", "terminated", "time_out",
-            "done", "episode_length", "episode_return", "target", "origin", "final_return", "final_length",
-            "final_success", "final_status", "final_waypoints")
+COMPARED = tuple(field.name for field in dataclasses.fields(EnvBuffers))
+"""Every buffer of the batched-env protocol."""
 
 
 def fast_config(**changes) -> WaypointConfig:
@@ -86,11 +85,13 @@ def test_first_env_makes_a_slice_of_the_larger_batch():
 
 def test_sharded_env_matches_one_process_step_for_step():
     """5 environments over 2 workers (shards of 3 and 2) against one SailingEnv with the same seed: every
-    buffer bit for bit, through several same-step resets and a re-seeded reset."""
+    buffer bit for bit, through several same-step resets and a re-seeded reset. Both are BatchedEnvs."""
     task = fast_config()
     single = SailingEnv(task, 5, device="cpu", seed=7)
     generator = torch.Generator().manual_seed(0)
     with ShardedSailingEnv(task, 5, workers=2, seed=7) as sharded:
+        assert isinstance(single, BatchedEnv) and isinstance(sharded, BatchedEnv)
+        assert not hasattr(sharded, "simulator")  # nothing reaches through it
         resets = 0
         for step in range(12):
             if step == 8:
@@ -120,7 +121,7 @@ def test_shared_ocean_follows_sea_state_changes_and_every_substep_updates():
         for step in range(7):
             if step == 2:
                 for env in (single, shared, own):
-                    env.simulator.ocean.set_significant_wave_height(0.6)
+                    assert env.set_significant_wave_height(0.6) == env.significant_wave_height
             if step == 5:
                 for env in (single, shared, own):
                     env.reset(seed=9)
@@ -131,10 +132,11 @@ def test_shared_ocean_follows_sea_state_changes_and_every_substep_updates():
                 expected = getattr(single.buffers, name)
                 assert torch.equal(expected, getattr(shared.buffers, name)), (step, name)
                 assert torch.equal(expected, getattr(own.buffers, name)), (step, name)
-        assert shared.simulator.ocean.significant_wave_height == single.simulator.ocean.significant_wave_height
+        assert shared.significant_wave_height == single.significant_wave_height == \
+            single.simulator.ocean.significant_wave_height
     with pytest.raises(ValueError, match="hs must be a finite number"):
         with ShardedSailingEnv(task, 2, workers=1) as env:
-            env.simulator.ocean.set_significant_wave_height(-1.0)
+            env.set_significant_wave_height(-1.0)
 
 
 def test_a_killed_worker_is_reported_and_every_worker_stops():
