@@ -72,8 +72,9 @@ from .distributed_launch import gpus_problem, launch, torchrun_command, visible_
 from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
 from ..interfaces.rsl_rl_env import RslRlVecEnv
 from ..parallel.sharded import ShardedSailingEnv
+from ..protocol import BatchedEnv
 
-__all__ = ["train", "TrainResult", "apply_overrides", "main"]
+__all__ = ["train", "Training", "TrainLength", "RunOutput", "Placement", "TrainResult", "apply_overrides", "main"]
 
 
 @dataclasses.dataclass
@@ -188,35 +189,68 @@ def _default_run_dir(task: str, run_name: str | None, root: str) -> str:
     return os.path.join(root, task, f"{stamp}_{run_name}" if run_name else stamp)
 
 
-def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: str | None = None,
-          run_name: str | None = None, runs_root: str = "runs", num_envs: int | None = None,
-          iterations: int | None = None, minutes: float | None = None, resume: str | None = None,
-          progress: bool = True, workers: int = 1, rank: RankContext | None = None,
-          dist_timeout: float = DEFAULT_TIMEOUT_S) -> TrainResult:
+@dataclasses.dataclass(frozen=True)
+class TrainLength:
+    """How long :func:`train` runs: the first limit reached ends it."""
+
+    iterations: int | None = None
+    """PPO iterations in this call (default: the config's)."""
+    minutes: float | None = None
+    """Stop after the iteration that passes this much wall time [min] (rank 0's clock decides for every rank)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class RunOutput:
+    """Where :func:`train` writes (rank 0 only) and what it shows."""
+
+    run_dir: str | None = None
+    """The run folder (default ``runs_root/<task>/<date>_<run_name>``; resumed: the checkpoint's folder)."""
+    run_name: str | None = None
+    """Suffix of the default run folder's name."""
+    runs_root: str = "runs"
+    """Folder that holds ``<task>/<date>_<name>/``."""
+    progress: bool = True
+    """Show a progress bar."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Placement:
+    """Where :func:`train` runs: its device, environments and ranks."""
+
+    device: str = "cpu"
+    """"cpu", "cuda" or "cuda:N": the simulator and the networks both live there. With several ranks,
+    "cuda" is each rank's ``cuda:LOCAL_RANK``."""
+    num_envs: int | None = None
+    """Environments of this rank (default: the config's for this device); W ranks simulate W times as many,
+    rank r's being environments [r num_envs, (r + 1) num_envs) of one batch."""
+    workers: int = 1
+    """Processes that simulate the environments, each a shard on a core of its own (a
+    :class:`ShardedSailingEnv`, CPU only, one rank only; the same results as 1 for the same seed)."""
+    rank: RankContext | None = None
+    """Which rank this is (default: from torchrun's RANK, LOCAL_RANK, WORLD_SIZE; rank 0 of 1 without them)."""
+    dist_timeout: float = DEFAULT_TIMEOUT_S
+    """[s] the longest any rank waits for the others (several ranks only)."""
+
+
+def train(config: TrainConfig, *, seed: int = 0, length: TrainLength = TrainLength(), output: RunOutput = RunOutput(),
+          placement: Placement = Placement(), resume: str | None = None) -> TrainResult:
     """Train a policy with rsl-rl PPO, in this process or as one rank of several (torchrun).
+
+    Example::
+
+        train(agent_config("EBoatMission-v0"), seed=1, length=TrainLength(minutes=5),
+              placement=Placement(device="cuda"), output=RunOutput(run_name="h100"))
 
     Args:
         config: the task's training config (``agents.agent_config(task)``, changed as wished).
-        device: "cpu", "cuda" or "cuda:N": the simulator and the networks both live there. With several
-            ranks, "cuda" is each rank's ``cuda:LOCAL_RANK``.
         seed: seeds the environments' random streams, the networks' initialisation and PPO's sampling
             (rank r's torch seed: ``distributed.rank_seed(seed, r)``).
-        run_dir: where to write (default ``runs_root/<task>/<date>_<run_name>``).
-        num_envs: environments of this rank (default: the config's for this device); W ranks simulate
-            W times as many, rank r's being environments [r num_envs, (r + 1) num_envs) of one batch.
-        iterations: PPO iterations to run in this call (default: the config's).
-        minutes: stop after the iteration that passes this much wall time (an upper bound on
-            ``iterations``; rank 0's clock decides for every rank).
+        length: iterations and wall-time limit (:class:`TrainLength`).
+        output: run folder and progress bar (:class:`RunOutput`).
+        placement: device, environments, worker processes and ranks (:class:`Placement`).
         resume: a training checkpoint (``model_<it>.pt``) to continue from: networks, optimiser, torch
             random state, curriculum; the next iteration is the one after it. Rank 0 reads it and sends it
             to the others; it may come from a run with another number of ranks.
-        progress: show a progress bar (rank 0).
-        workers: processes that simulate the environments, each a shard of them on a core of its own
-            (a :class:`ShardedSailingEnv`, CPU only, one rank only; the same results as 1, the default,
-            for the same seed).
-        rank: which rank this is (default: from torchrun's RANK, LOCAL_RANK, WORLD_SIZE; rank 0 of 1
-            without them).
-        dist_timeout: [s] the longest any rank waits for the others (several ranks only).
 
     Only rank 0 writes files (run folder, config.json, progress.csv, TensorBoard, checkpoints,
     policy.pt) and shows progress; every rank returns the same iterations and history.
@@ -227,196 +261,277 @@ def train(config: TrainConfig, *, device: str = "cpu", seed: int = 0, run_dir: s
     Raises:
         RankFailure: (several ranks) a rank failed or lost contact with the others; every rank raises.
     """
-    context = RankContext.from_env() if rank is None else rank
-    if not context.distributed:
-        device = resolve_device(device)
-    ranks = Ranks.start(context, device, dist_timeout)
-    result = _train(config, ranks, device=device, seed=seed, run_dir=run_dir, run_name=run_name,
-                    runs_root=runs_root, num_envs=num_envs, iterations=iterations, minutes=minutes, resume=resume,
-                    progress=progress, workers=workers)
+    context = RankContext.from_env() if placement.rank is None else placement.rank
+    device = placement.device if context.distributed else resolve_device(placement.device)
+    ranks = Ranks.start(context, device, placement.dist_timeout)
+    training = Training(config, ranks, seed=seed, length=length, output=output,
+                        placement=dataclasses.replace(placement, device=device), resume=resume)
+    try:
+        training.setup()
+        result = training.run()
+    finally:
+        training.close()
     ranks.close()  # only after success: a failed rank exits, and torchrun stops the others
     return result
 
 
-def _train(config: TrainConfig, ranks: Ranks, *, device: str, seed: int, run_dir: str | None, run_name: str | None,
-           runs_root: str, num_envs: int | None, iterations: int | None, minutes: float | None, resume: str | None,
-           progress: bool, workers: int) -> TrainResult:
-    context = ranks.context
-    main_rank = context.is_main
-    error = None
-    try:
+@dataclasses.dataclass
+class _Rollout:
+    """What one iteration's collection counted over the episodes with their whole time budget."""
+
+    ended: torch.Tensor
+    successes: torch.Tensor
+    returns: torch.Tensor
+
+
+class Training:
+    """One training run on one rank, in the steps of its life: :meth:`setup` (run folder, environments,
+    networks, a resumed checkpoint), then per iteration :meth:`prepare` (a seeded restart at each checkpoint
+    boundary, the curriculum's sea), :meth:`collect` (the rollout), :meth:`update` (PPO) and :meth:`record` (history, logs,
+    progress), with :meth:`checkpoint` every ``save_interval`` iterations and at the end, and :meth:`close`
+    (workers, progress bar, log writer). :meth:`run` does all of it; :func:`train` is the usual entry."""
+
+    def __init__(self, config: TrainConfig, ranks: Ranks, *, seed: int, length: TrainLength, output: RunOutput,
+                 placement: Placement, resume: str | None):
+        self.config, self.ranks, self.seed, self.output, self.resume = config, ranks, seed, output, resume
+        self.context = context = ranks.context
+        error = None
+        try:
+            device = resolve_device(rank_device(context, placement.device)) if context.distributed \
+                else placement.device
+            num_envs = config.num_envs(device.startswith("cuda")) if placement.num_envs is None \
+                else placement.num_envs
+            if isinstance(num_envs, bool) or not isinstance(num_envs, numbers.Integral) or num_envs < 1:
+                raise ValueError(f"num_envs must be a whole number >= 1, got {num_envs!r}")
+            iterations = config.iterations if length.iterations is None else int(length.iterations)
+            if iterations < 1:
+                raise ValueError(f"iterations must be >= 1, got {iterations}")
+            minutes = length.minutes
+            if minutes is not None and not (math.isfinite(minutes) and minutes > 0):
+                raise ValueError(f"minutes must be a positive number, got {minutes}")
+            _check_workers(placement.workers, device, int(num_envs))
+            if placement.workers > 1 and context.distributed:
+                raise ValueError(f"workers {placement.workers} with {context.world_size} ranks: a ShardedSailingEnv "
+                                 "cannot be one rank's share yet; start more ranks instead (one per core)")
+        except ValueError as caught:
+            error = caught
+        ranks.check(error, "at startup")
+        self.device, self.num_envs, self.workers = device, int(num_envs), placement.workers
+        self.iterations, self.minutes = iterations, minutes
         if context.distributed:
-            device = resolve_device(rank_device(context, device))
-        is_cuda = device.startswith("cuda")
-        num_envs = config.num_envs(is_cuda) if num_envs is None else num_envs
-        if isinstance(num_envs, bool) or not isinstance(num_envs, numbers.Integral) or num_envs < 1:
-            raise ValueError(f"num_envs must be a whole number >= 1, got {num_envs!r}")
-        num_envs = int(num_envs)
-        iterations = config.iterations if iterations is None else int(iterations)
-        if iterations < 1:
-            raise ValueError(f"iterations must be >= 1, got {iterations}")
-        if minutes is not None and not (math.isfinite(minutes) and minutes > 0):
-            raise ValueError(f"minutes must be a positive number, got {minutes}")
-        _check_workers(workers, device, num_envs)
-        if workers > 1 and context.distributed:
-            raise ValueError(f"workers {workers} with {context.world_size} ranks: a ShardedSailingEnv cannot be one "
-                             "rank's share yet; start more ranks instead (one per core)")
-    except ValueError as caught:
-        error = caught
-    ranks.check(error, "at startup")
-    if context.distributed:
-        _check_same_settings(ranks, config, device, seed, num_envs, iterations, minutes, resume, workers)
-    if is_cuda and context.distributed:
-        torch.cuda.set_device(torch.device(device))
+            _check_same_settings(ranks, config, device, seed, self.num_envs, iterations, minutes, resume, self.workers)
+        if device.startswith("cuda") and context.distributed:
+            torch.cuda.set_device(torch.device(device))
+        self.env = self.vec = self.runner = self.bar = None
+        self.history: list[dict[str, float]] = []
+        self.start_iteration = 0
+        self.last_checkpoint = resume or ""
 
-    checkpoint = _read_resumed(ranks, resume, config) if resume is not None else None
-    if main_rank:
-        if run_dir is None and resume is not None:
-            run_dir = os.path.dirname(os.path.abspath(resume))
-        run_dir = run_dir or _default_run_dir(config.task, run_name, runs_root)
+    # --- setup ------------------------------------------------------------------------------------
+    def setup(self) -> None:
+        """The run folder and config.json (rank 0), the resumed checkpoint, the environments (this rank's
+        share), rsl-rl's runner and networks, the curriculum, the logs and the progress bar."""
+        config, ranks, context = self.config, self.ranks, self.context
+        checkpoint = _read_resumed(ranks, self.resume, config) if self.resume is not None else None
+        self.run_dir = ranks.broadcast(self._make_run_dir() if context.is_main else None)
+        error = None
+        try:
+            torch.manual_seed(rank_seed(self.seed, context.rank))
+            if self.workers > 1:
+                self.env = ShardedSailingEnv(config.train_task, self.num_envs, workers=self.workers, seed=self.seed)
+            else:
+                self.env = SailingEnv(config.train_task, self.num_envs, device=self.device, seed=self.seed,
+                                      first_env=context.first_env(self.num_envs))
+            self.vec = RslRlVecEnv(self.env)
+            self.full_budget = torch.zeros(self.num_envs, dtype=torch.bool, device=self.vec.device)
+            runner_config = config.ppo.runner_config(config.steps_per_env)
+            with contextlib.redirect_stdout(io.StringIO()):  # rsl-rl prints the networks; the bar says enough
+                self.runner = DistributedRunner(self.vec, runner_config,
+                                                log_dir=self.run_dir if context.is_main else None,
+                                                device=str(self.vec.device), context=context,
+                                                timeout_s=ranks.timeout_s)
+        except Exception as caught:
+            if not context.distributed:
+                raise
+            _print_own_failure(context, caught)
+            error = caught
+        ranks.check(error, "building its environments and networks")
+        self.alg = self.runner.alg
+        self.curriculum = _Curriculum(config.curriculum, checkpoint["curriculum"] if checkpoint else None)
+        if checkpoint is not None:
+            self.alg.load(checkpoint, None, strict=True)
+            _restore_random_state(checkpoint, context, self.device)
+            self.start_iteration = int(checkpoint["iteration"]) + 1
+            self.history = [dict(row) for row in checkpoint.get("history", [])]
+        if context.distributed:
+            self.alg.broadcast_parameters()  # rank 0's fresh networks (a checkpoint gave every rank the same already)
+        self.base_sea_state = self.env.significant_wave_height
+        self.runner.logger.git_status_repos = []  # rsl-rl would store its own repository's git diff in the run
+        with contextlib.redirect_stdout(io.StringIO()):
+            self.runner.logger.init_logging_writer()
+        if context.is_main:
+            with contextlib.suppress(OSError):
+                os.rmdir(os.path.join(self.run_dir, "git"))  # left empty by rsl-rl when it stores no repository
+        self.alg.train_mode()
+        self.decisions_per_iteration = self.num_envs * config.steps_per_env * context.world_size
+        label = config.task if not context.distributed else f"{config.task} x{context.world_size}"
+        self.bar = _progress_bar(self.output.progress and context.is_main,
+                                 self.iterations if self.iterations < 10**8 else None, label)
+        self.started = time.perf_counter()
+        """When this call's training began (after the setup; ``time.perf_counter`` [s])."""
+        self.wall_before = self.history[-1]["wall_time_s"] if self.history else 0.0
+        """Training wall time of the run before this call (a resumed run's) [s]."""
+
+    def _make_run_dir(self) -> str:
+        """Rank 0's run folder, made, with the resolved config written into it."""
+        output, config = self.output, self.config
+        run_dir = output.run_dir
+        if run_dir is None and self.resume is not None:
+            run_dir = os.path.dirname(os.path.abspath(self.resume))
+        run_dir = run_dir or _default_run_dir(config.task, output.run_name, output.runs_root)
         os.makedirs(run_dir, exist_ok=True)
-        resolved = {"task": config.task, "device": device, "seed": seed, "num_envs": num_envs, "workers": workers,
-                    "world_size": context.world_size, "train_config": _jsonable(config)}
+        resolved = {"task": config.task, "device": self.device, "seed": self.seed, "num_envs": self.num_envs,
+                    "workers": self.workers, "world_size": self.context.world_size, "train_config": _jsonable(config)}
         _write_json(os.path.join(run_dir, "config.json"), resolved)
-    run_dir = ranks.broadcast(run_dir)
+        return run_dir
 
-    error = None
-    try:
-        torch.manual_seed(rank_seed(seed, context.rank))
-        if workers > 1:
-            env = ShardedSailingEnv(config.train_task, num_envs, workers=workers, seed=seed)
-        else:
-            env = SailingEnv(config.train_task, num_envs, device=device, seed=seed,
-                             first_env=context.first_env(num_envs))
-        vec = RslRlVecEnv(env)
-        buffers = env.buffers
-        full_budget = torch.zeros(num_envs, dtype=torch.bool, device=vec.device)
-        runner_config = config.ppo.runner_config(config.steps_per_env)
-        with contextlib.redirect_stdout(io.StringIO()):  # rsl-rl prints the networks; the bar says enough
-            runner = DistributedRunner(vec, runner_config, log_dir=run_dir if main_rank else None,
-                                       device=str(vec.device), context=context, timeout_s=ranks.timeout_s)
-    except Exception as caught:
-        if not context.distributed:
-            raise
-        _print_own_failure(context, caught)
-        error = caught
-    ranks.check(error, "building its environments and networks")
-    alg = runner.alg
-    curriculum = _Curriculum(config.curriculum, checkpoint["curriculum"] if checkpoint else None)
-    history: list[dict[str, float]] = []
-    start_iteration = 0
-    if checkpoint is not None:
-        alg.load(checkpoint, None, strict=True)
-        _restore_random_state(checkpoint, context, device)
-        start_iteration = int(checkpoint["iteration"]) + 1
-        history = [dict(row) for row in checkpoint.get("history", [])]
-    if context.distributed:
-        alg.broadcast_parameters()  # rank 0's fresh networks (a checkpoint gave every rank the same already)
-    base_sea_state = env.significant_wave_height
+    # --- one iteration ------------------------------------------------------------------------------
+    def prepare(self, iteration: int) -> None:
+        """The seeded restart that opens each segment of ``save_interval`` iterations (and a resumed run),
+        and the curriculum's sea state for the iteration."""
+        config = self.config
+        if iteration % config.save_interval == 0 or iteration == self.start_iteration:
+            _restart_segment(self.vec, config, self.seed, iteration - iteration % config.save_interval,
+                             self.full_budget, first_env=self.context.first_env(self.num_envs))
+        self.sea_state = self.curriculum.sea_state(self.seed, iteration)
+        if self.sea_state is not None:
+            self.env.set_significant_wave_height(self.sea_state)
 
-    runner.logger.git_status_repos = []  # rsl-rl would store its own repository's git diff in the run
-    with contextlib.redirect_stdout(io.StringIO()):
-        runner.logger.init_logging_writer()
-    if main_rank:
-        with contextlib.suppress(OSError):
-            os.rmdir(os.path.join(run_dir, "git"))  # left empty by rsl-rl when it stores no repository
-    alg.train_mode()
-    decisions_per_iteration = num_envs * config.steps_per_env * context.world_size
-    label = config.task if not context.distributed else f"{config.task} x{context.world_size}"
-    bar = _progress_bar(progress and main_rank, iterations if iterations < 10**8 else None, label)
-    started = time.perf_counter()
-    wall_before = history[-1]["wall_time_s"] if history else 0.0
-    last_checkpoint = resume or ""
-    iteration = start_iteration - 1
-    try:
-        for iteration in range(start_iteration, start_iteration + iterations):
-            if iteration % config.save_interval == 0 or iteration == start_iteration:
-                _restart_segment(vec, config, seed, iteration - iteration % config.save_interval, full_budget,
-                                 first_env=context.first_env(num_envs))
-            sea_state = curriculum.sea_state(seed, iteration)
-            if sea_state is not None:
-                env.set_significant_wave_height(sea_state)
+    def collect(self, iteration: int) -> tuple[_Rollout | None, Exception | None]:
+        """The iteration's rollout into PPO's storage and its returns. Returns the counts of the episodes
+        that ended with their whole budget, or (several ranks) the failure to share."""
+        config, vec, alg, buffers = self.config, self.vec, self.alg, self.env.buffers
+        rollout = _Rollout(*(torch.zeros((), device=vec.device) for _ in range(3)))
+        try:
+            with torch.inference_mode():
+                obs = vec.get_observations()
+                for _ in range(config.steps_per_env):
+                    actions = alg.act(obs)
+                    obs, rewards, dones, extras = vec.step(actions)
+                    alg.process_env_step(obs, rewards, dones, extras)
+                    self.runner.logger.process_env_step(rewards, dones, extras, None)
+                    counted = dones.bool() & self.full_budget
+                    rollout.ended += counted.sum()
+                    rollout.successes += (buffers.final_success * counted).sum()
+                    rollout.returns += (buffers.final_return * counted).sum()
+                    self.full_budget |= dones.bool()
+                inject_fault(self.context, iteration, alg.storage.rewards)
+                _check_finite(alg.storage, iteration)
+                alg.compute_returns(obs)
+        except Exception as caught:
+            if not self.context.distributed:
+                raise
+            if not isinstance(caught, NonFiniteBatch):
+                _print_own_failure(self.context, caught)
+            return None, caught
+        return rollout, None
+
+    def update(self, iteration: int, rollout: _Rollout | None, failure: Exception | None) -> tuple[dict, list[float]]:
+        """Every rank's episode counts (or its failure) gathered, then PPO's update; returns the losses and
+        the gathered (episodes, success sum, return sum)."""
+        local = [0.0, 0.0, 0.0] if rollout is None else \
+            [float(rollout.ended.item()), float(rollout.successes.item()), float(rollout.returns.item())]
+        # Every rank's statistics, or every rank's failure, before the update's collectives.
+        gathered = self.ranks.gather_iteration(failure, local, f"at iteration {iteration}")
+        return self.alg.update(), gathered
+
+    def record(self, iteration: int, losses: dict, gathered: list[float], collect_time: float,
+               learn_time: float) -> dict[str, float]:
+        """The iteration's row of the history (times [s]), rsl-rl's and our TensorBoard scalars, the
+        curriculum's move and the progress bar; returns the row."""
+        alg, runner = self.alg, self.runner
+        runner.current_learning_iteration = iteration
+        with contextlib.redirect_stdout(io.StringIO()):
+            runner.logger.log(it=iteration, start_it=self.start_iteration,
+                              total_it=self.start_iteration + self.iterations, collect_time=collect_time,
+                              learn_time=learn_time, loss_dict=losses, learning_rate=alg.learning_rate,
+                              action_std=alg.get_policy().output_std, rnd_weight=None)
+        count, success_sum, return_sum = gathered
+        success_rate = success_sum / count if count else float("nan")
+        mean_return = return_sum / count if count else float("nan")
+        self.curriculum.record(success_rate)  # the same sums on every rank: the same level everywhere
+        decisions_per_second = self.decisions_per_iteration / (collect_time + learn_time)
+        history = self.history
+        row = {"iteration": iteration,
+               "samples": (history[-1]["samples"] if history else 0) + self.decisions_per_iteration,
+               "wall_time_s": self.wall_before + time.perf_counter() - self.started, "episodes": count,
+               "mean_return": mean_return, "success_rate": success_rate, "decisions_per_s": decisions_per_second,
+               "real_time_factor": decisions_per_second * self.env.decision_period,
+               "sea_state_m": self.base_sea_state if self.sea_state is None else self.sea_state,
+               "curriculum_level": self.curriculum.level, "learning_rate": alg.learning_rate,
+               "collect_s": collect_time, "learn_s": learn_time}
+        history.append(row)
+        if writer := runner.logger.writer:
+            writer.add_scalar("Episode/success_rate", success_rate if count else 0.0, iteration)
+            writer.add_scalar("Curriculum/sea_state_m", row["sea_state_m"], iteration)
+            writer.add_scalar("Perf/real_time_factor", row["real_time_factor"], iteration)
+        _update_bar(self.bar, row)
+        return row
+
+    def checkpoint(self, iteration: int) -> str:
+        """``model_<iteration>.pt`` in the run folder (written by rank 0, with every rank's random state)."""
+        self.last_checkpoint = _save(self.run_dir, iteration, self.alg, self.config, self.env, self.curriculum,
+                                     self.history, self.device, self.ranks)
+        return self.last_checkpoint
+
+    # --- the whole run ------------------------------------------------------------------------------
+    def run(self) -> TrainResult:
+        """The iterations (until ``iterations`` or ``minutes``), then the exported policy and, with several
+        ranks, the check that every rank holds the same networks."""
+        config, context, ranks = self.config, self.context, self.ranks
+        started = self.started
+        iteration = self.start_iteration - 1
+        for iteration in range(self.start_iteration, self.start_iteration + self.iterations):
+            self.prepare(iteration)
             tic = time.perf_counter()
-            ended = torch.zeros((), device=vec.device)
-            successes = torch.zeros((), device=vec.device)
-            returns = torch.zeros((), device=vec.device)
-            failure = None
-            try:
-                with torch.inference_mode():
-                    obs = vec.get_observations()
-                    for _ in range(config.steps_per_env):
-                        actions = alg.act(obs)
-                        obs, rewards, dones, extras = vec.step(actions)
-                        alg.process_env_step(obs, rewards, dones, extras)
-                        runner.logger.process_env_step(rewards, dones, extras, None)
-                        counted = dones.bool() & full_budget
-                        ended += counted.sum()
-                        successes += (buffers.final_success * counted).sum()
-                        returns += (buffers.final_return * counted).sum()
-                        full_budget |= dones.bool()
-                    inject_fault(context, iteration, alg.storage.rewards)
-                    _check_finite(alg.storage, iteration)
-                    alg.compute_returns(obs)
-                local = [float(ended.item()), float(successes.item()), float(returns.item())]
-            except Exception as caught:
-                if not context.distributed:
-                    raise
-                if not isinstance(caught, NonFiniteBatch):
-                    _print_own_failure(context, caught)
-                failure, local = caught, [0.0, 0.0, 0.0]
+            rollout, failure = self.collect(iteration)
             collect_time = time.perf_counter() - tic
             tic = time.perf_counter()
-            # Every rank's statistics, or every rank's failure, before the update's collectives.
-            count, success_sum, return_sum = ranks.gather_iteration(failure, local, f"at iteration {iteration}")
-            losses = alg.update()
+            losses, gathered = self.update(iteration, rollout, failure)
             learn_time = time.perf_counter() - tic
-            runner.current_learning_iteration = iteration
-            with contextlib.redirect_stdout(io.StringIO()):
-                runner.logger.log(it=iteration, start_it=start_iteration, total_it=start_iteration + iterations,
-                                  collect_time=collect_time, learn_time=learn_time, loss_dict=losses,
-                                  learning_rate=alg.learning_rate, action_std=alg.get_policy().output_std,
-                                  rnd_weight=None)
-            success_rate = success_sum / count if count else float("nan")
-            mean_return = return_sum / count if count else float("nan")
-            curriculum.record(success_rate)  # the same sums on every rank: the same level everywhere
-            decisions_per_second = decisions_per_iteration / (collect_time + learn_time)
-            row = {"iteration": iteration,
-                   "samples": (history[-1]["samples"] if history else 0) + decisions_per_iteration,
-                   "wall_time_s": wall_before + time.perf_counter() - started, "episodes": count,
-                   "mean_return": mean_return, "success_rate": success_rate, "decisions_per_s": decisions_per_second,
-                   "real_time_factor": decisions_per_second * env.decision_period,
-                   "sea_state_m": base_sea_state if sea_state is None else sea_state,
-                   "curriculum_level": curriculum.level, "learning_rate": alg.learning_rate,
-                   "collect_s": collect_time, "learn_s": learn_time}
-            history.append(row)
-            if writer := runner.logger.writer:
-                writer.add_scalar("Episode/success_rate", success_rate if count else 0.0, iteration)
-                writer.add_scalar("Curriculum/sea_state_m", row["sea_state_m"], iteration)
-                writer.add_scalar("Perf/real_time_factor", row["real_time_factor"], iteration)
-            _update_bar(bar, row)
-            last = iteration == start_iteration + iterations - 1
-            out_of_time = minutes is not None and time.perf_counter() - started >= 60.0 * minutes
-            if minutes is not None and context.distributed:
+            self.record(iteration, losses, gathered, collect_time, learn_time)
+            last = iteration == self.start_iteration + self.iterations - 1
+            out_of_time = self.minutes is not None and time.perf_counter() - started >= 60.0 * self.minutes
+            if self.minutes is not None and context.distributed:
                 out_of_time = ranks.broadcast(out_of_time)  # rank 0's clock, or the ranks would part ways
             if (iteration + 1) % config.save_interval == 0 or last or out_of_time:
-                last_checkpoint = _save(run_dir, iteration, alg, config, env, curriculum, history, device, ranks)
-            if main_rank:
-                _write_history(os.path.join(run_dir, "progress.csv"), history)
+                self.checkpoint(iteration)
+            if context.is_main:
+                _write_history(os.path.join(self.run_dir, "progress.csv"), self.history)
             if out_of_time:
                 break
-    finally:
-        vec.close()  # a ShardedSailingEnv's workers stop here, also on Ctrl-C
-        if bar is not None:
-            bar.close()
-        with contextlib.redirect_stdout(io.StringIO()):
-            runner.logger.stop_logging_writer()
-    policy_path = os.path.join(run_dir, "policy.pt")
-    if main_rank:
-        export_policy(read_checkpoint(last_checkpoint), policy_path)
-    checksums = _check_identical_parameters(ranks, alg, run_dir, device, num_envs)
-    return TrainResult(run_dir=run_dir, checkpoint=last_checkpoint, policy=policy_path,
-                       iterations=iteration - start_iteration + 1, wall_time=time.perf_counter() - started,
-                       history=history, world_size=context.world_size, parameter_checksums=checksums)
+        self.close()
+        policy_path = os.path.join(self.run_dir, "policy.pt")
+        if context.is_main:
+            export_policy(read_checkpoint(self.last_checkpoint), policy_path)
+        checksums = _check_identical_parameters(ranks, self.alg, self.run_dir, self.device, self.num_envs)
+        return TrainResult(run_dir=self.run_dir, checkpoint=self.last_checkpoint, policy=policy_path,
+                           iterations=iteration - self.start_iteration + 1, wall_time=time.perf_counter() - started,
+                           history=self.history, world_size=context.world_size, parameter_checksums=checksums)
+
+    def close(self) -> None:
+        """Stop a ShardedSailingEnv's workers (also on Ctrl-C), close the progress bar and the log writer.
+        Idempotent."""
+        if self.vec is not None:
+            self.vec.close()
+            self.vec = None
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+        if self.runner is not None:
+            with contextlib.redirect_stdout(io.StringIO()):
+                self.runner.logger.stop_logging_writer()
+            self.runner = None
 
 
 class NonFiniteBatch(ValueError):
@@ -515,7 +630,7 @@ def _check_identical_parameters(ranks: Ranks, alg, run_dir: str, device: str, nu
     return checksums
 
 
-def _save(run_dir: str, iteration: int, alg, config: TrainConfig, env: SailingEnv, curriculum: _Curriculum,
+def _save(run_dir: str, iteration: int, alg, config: TrainConfig, env: BatchedEnv, curriculum: _Curriculum,
           history: list[dict[str, float]], device: str, ranks: Ranks) -> str:
     """Write ``model_<iteration>.pt`` (rank 0; every rank gives its random state, so a resume by as many
     ranks continues each rank's stream). Returns its path on every rank."""
@@ -686,10 +801,11 @@ def main(argv: list[str] | None = None) -> int:
             iterations = 10**9
         else:
             iterations = args.iterations
-        result = train(config, device=device or "cpu", seed=args.seed, run_name=args.run_name,
-                       runs_root=args.runs_root, num_envs=args.num_envs, iterations=iterations, minutes=args.minutes,
-                       resume=args.resume, progress=not args.no_progress, workers=args.workers, rank=context,
-                       dist_timeout=args.dist_timeout)
+        result = train(config, seed=args.seed, length=TrainLength(iterations, args.minutes),
+                       output=RunOutput(run_name=args.run_name, runs_root=args.runs_root, progress=not args.no_progress),
+                       placement=Placement(device=device or "cpu", num_envs=args.num_envs, workers=args.workers,
+                                           rank=context, dist_timeout=args.dist_timeout),
+                       resume=args.resume)
     except RankFailure as error:
         if context.is_main or not error.everywhere:  # the others hold the same message as rank 0
             print(f"{parser.prog}: {error}", file=sys.stderr)

@@ -30,7 +30,7 @@ from ocean_warp.envs.training.agents import agent_config
 from ocean_warp.envs.training.distributed import RankContext, derived_seed, parameter_checksum, rank_device, rank_seed
 from ocean_warp.envs.training.distributed_launch import describe_failure, gpus_problem, launch, torchrun_command
 from ocean_warp.envs.training.policy_io import read_checkpoint
-from ocean_warp.envs.training.train_loop import apply_overrides, train
+from ocean_warp.envs.training.train_loop import Placement, RunOutput, TrainLength, apply_overrides, train
 
 TINY = ["--task", "EBoatWaypoint-v0", "--device", "cpu", "--num-envs", "8", "--set", "steps_per_env=4",
         "--set", "save_interval=2", "--set", "train_task.episode_time=6.0", "--set", "ppo.hidden_dims=(16, 16)",
@@ -258,7 +258,8 @@ def test_two_cpu_ranks_train_one_policy_that_resumes_in_one_process(tmp_path, on
     assert [row["samples"] for row in checkpoint["history"]] == [64, 128]  # 2 ranks x 8 envs x 4 decisions
 
     config = apply_overrides(agent_config("EBoatWaypoint-v0"), [TINY[i + 1] for i, t in enumerate(TINY) if t == "--set"])
-    resumed = train(config, seed=5, num_envs=8, iterations=1, resume=str(run / "model_1.pt"), progress=False)
+    resumed = train(config, seed=5, placement=Placement(num_envs=8), length=TrainLength(iterations=1),
+                    output=RunOutput(progress=False), resume=str(run / "model_1.pt"))
     assert resumed.run_dir == str(run) and resumed.checkpoint.endswith("model_2.pt") and resumed.world_size == 1
     assert resumed.parameter_checksums is None
     after = read_checkpoint(resumed.checkpoint)

@@ -15,7 +15,16 @@ from ocean_warp.eboat.simulator_config import still_water
 from ocean_warp.envs import RslRlVecEnv, SailingEnv, WaypointConfig
 from ocean_warp.envs.training.agents import CurriculumConfig, PpoConfig, TrainConfig, agent_config
 from ocean_warp.envs.training.policy_io import CheckpointError, build_actor, load_policy, read_checkpoint, save_checkpoint
-from ocean_warp.envs.training.train_loop import _Curriculum, apply_overrides, main, train
+from ocean_warp.envs.training.train_loop import (
+    Placement,
+    RunOutput,
+    TrainLength,
+    Training,
+    _Curriculum,
+    apply_overrides,
+    main,
+    train,
+)
 
 
 
@@ -58,8 +67,10 @@ def rollout_return(policy, task, num_envs: int = 64, seed: int = 123) -> tuple[f
 
 def test_training_raises_the_return_on_an_easy_waypoint(tmp_path, one_torch_thread):
     config = small_config(easy_task(), steps_per_env=16, save_interval=100)
-    before = train(config, seed=0, num_envs=64, iterations=1, run_dir=str(tmp_path / "a"), progress=False)
-    after = train(config, seed=0, num_envs=64, iterations=16, run_dir=str(tmp_path / "b"), progress=False)
+    before = train(config, seed=0, placement=Placement(num_envs=64), length=TrainLength(iterations=1),
+                   output=RunOutput(run_dir=str(tmp_path / "a"), progress=False))
+    after = train(config, seed=0, placement=Placement(num_envs=64), length=TrainLength(iterations=16),
+                  output=RunOutput(run_dir=str(tmp_path / "b"), progress=False))
     return_before, success_before = rollout_return(load_policy(before.policy), easy_task())
     return_after, success_after = rollout_return(load_policy(after.policy), easy_task())
     print(f"return {return_before:.3f} -> {return_after:.3f}, success {success_before:.2f} -> {success_after:.2f}")
@@ -73,12 +84,48 @@ def test_training_raises_the_return_on_an_easy_waypoint(tmp_path, one_torch_thre
     assert list((tmp_path / "b").glob("events.out.tfevents.*"))
 
 
+def test_training_driven_step_by_step_is_train(tmp_path, one_torch_thread):
+    """The Training object's steps (setup, then prepare, collect, update and record per iteration, a
+    checkpoint, close), driven by hand, give the networks train() gives, bit for bit."""
+    from ocean_warp.envs.training.distributed import RankContext, Ranks
+
+    config = small_config(quick_task(episode_time=6.0), steps_per_env=4, save_interval=2)
+    whole = train(config, seed=2, placement=Placement(num_envs=8), length=TrainLength(iterations=3),
+                  output=RunOutput(run_dir=str(tmp_path / "whole"), progress=False))
+    ranks = Ranks.start(RankContext.from_env(), "cpu")
+    training = Training(config, ranks, seed=2, length=TrainLength(iterations=3),
+                        output=RunOutput(run_dir=str(tmp_path / "by_hand"), progress=False),
+                        placement=Placement(num_envs=8), resume=None)
+    training.setup()
+    for iteration in range(3):
+        training.prepare(iteration)
+        rollout, failure = training.collect(iteration)
+        assert failure is None
+        losses, gathered = training.update(iteration, rollout, failure)
+        row = training.record(iteration, losses, gathered, collect_time=1.0, learn_time=1.0)
+        assert row["decisions_per_s"] == pytest.approx(8 * 4 / 2.0)
+    path = training.checkpoint(2)
+    training.close()
+    training.close()  # idempotent
+    ranks.close()
+    mine, theirs = read_checkpoint(path), read_checkpoint(whole.checkpoint)
+    assert mine["iteration"] == theirs["iteration"] == 2
+    for key in ("actor_state_dict", "critic_state_dict"):
+        for name, tensor in theirs[key].items():
+            assert torch.equal(mine[key][name], tensor), (key, name)
+    np.testing.assert_array_equal([row["mean_return"] for row in training.history],
+                                  [row["mean_return"] for row in whole.history])
+
+
 def test_resumed_training_matches_the_uninterrupted_run_bit_for_bit(tmp_path, one_torch_thread):
     config = small_config(quick_task(episode_time=6.0), steps_per_env=4, save_interval=2)
-    straight = train(config, seed=3, num_envs=8, iterations=4, run_dir=str(tmp_path / "straight"), progress=False)
-    first = train(config, seed=3, num_envs=8, iterations=2, run_dir=str(tmp_path / "split"), progress=False)
+    straight = train(config, seed=3, placement=Placement(num_envs=8), length=TrainLength(iterations=4),
+                     output=RunOutput(run_dir=str(tmp_path / "straight"), progress=False))
+    first = train(config, seed=3, placement=Placement(num_envs=8), length=TrainLength(iterations=2),
+                  output=RunOutput(run_dir=str(tmp_path / "split"), progress=False))
     assert first.checkpoint.endswith("model_1.pt")
-    resumed = train(config, seed=3, num_envs=8, iterations=2, resume=first.checkpoint, progress=False)
+    resumed = train(config, seed=3, placement=Placement(num_envs=8), length=TrainLength(iterations=2),
+                    output=RunOutput(progress=False), resume=first.checkpoint)
     assert resumed.run_dir == first.run_dir and resumed.checkpoint.endswith("model_3.pt")
     a, b = read_checkpoint(straight.checkpoint), read_checkpoint(resumed.checkpoint)
     for key in ("actor_state_dict", "critic_state_dict"):
@@ -149,7 +196,7 @@ def test_bad_checkpoints_give_clear_errors(tmp_path):
     with pytest.raises(CheckpointError, match="lacks observation"):
         load_policy(incomplete)
     with pytest.raises(CheckpointError, match="exported policy, not a training checkpoint"):
-        train(agent_config("EBoatWaypoint-v0"), resume=str(good), progress=False)
+        train(agent_config("EBoatWaypoint-v0"), resume=str(good), output=RunOutput(progress=False))
 
 
 def test_train_command_reports_a_bad_resume_without_a_traceback(tmp_path, capsys):
@@ -175,7 +222,8 @@ def test_train_command_checks_its_numbers_first(tmp_path, capsys):
         assert main(argv + ["--no-progress", "--runs-root", str(tmp_path)]) == 2
         assert capsys.readouterr().err.strip().splitlines() == [f"ocean-warp train: error: {message}"]
     with pytest.raises(ValueError, match=r"^num_envs must be a whole number >= 1, got 0$"):
-        train(agent_config("EBoatWaypoint-v0"), num_envs=0, progress=False, runs_root=str(tmp_path))
+        train(agent_config("EBoatWaypoint-v0"), placement=Placement(num_envs=0),
+              output=RunOutput(progress=False, runs_root=str(tmp_path)))
     assert list(tmp_path.iterdir()) == []
 
 
