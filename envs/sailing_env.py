@@ -24,6 +24,10 @@ from ocean_warp.validation import require_int_in_range
 
 from .tasks.task_kernels import (
     POLICY_OBS,
+    BoatView,
+    Course,
+    EpisodeEnds,
+    StartRows,
     PRIVILEGED_OBS,
     StartDistribution,
     TaskParameters,
@@ -145,6 +149,12 @@ class SailingEnv:
         self.final_orientation = zeros(n, wp.quat)
         self._everyone = wp.ones(n, dtype=wp.int32, device=device)
 
+        self._course = struct_from(Course, self)
+        """The task's per-environment arrays, grouped as the kernels take them."""
+        self._ends = struct_from(EpisodeEnds, self)
+        self._boats = struct_from(BoatView, self.simulator.state)
+        self._start_rows = struct_from(StartRows, self.simulator.start)
+
         view, state = wp.to_torch, self.simulator.state
         self.buffers = EnvBuffers(
             actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
@@ -210,31 +220,19 @@ class SailingEnv:
         episodes for the environments that ended, and the observations of the next decision (launch only)."""
         state = self.simulator.state
         wp.launch(evaluate, dim=self.num_envs, device=self.device,
-                  inputs=[self.parameters, self.actions, state.status, state.position, self.origin, self.route],
-                  outputs=[self.target_index, self.leg_start, self.previous_distance, self.last_action,
-                           self.episode_length, self.episode_return, self.reward, self.terminated, self.time_out,
-                           self.done, self.reset_mask, self.target_world, self.final_return, self.final_length,
-                           self.final_success, self.final_status, self.final_waypoints])
+                  inputs=[self.parameters, self.actions, state.status, state.position, self._course, self._ends])
         self._observe(self.final_policy_obs, self.final_critic_obs)
         self._start_episodes(self.reset_mask)
         self._observe(self.policy_obs, self.critic_obs)
 
     def _observe(self, policy: wp.array, critic: wp.array) -> None:
-        state = self.simulator.state
-        wp.launch(observe, dim=self.num_envs, device=self.device,
-                  inputs=[self.parameters, state.position, state.orientation, state.velocity, state.wind_velocity,
-                          state.truth, state.readings, state.rudder_angle, state.boom_angle, state.sheet_limit,
-                          self.target_world, self.leg_start, self.origin, self.target_index, self.last_action],
+        wp.launch(observe, dim=self.num_envs, device=self.device, inputs=[self.parameters, self._boats, self._course],
                   outputs=[policy, critic])
 
     def _start_episodes(self, mask: wp.array) -> None:
-        start = self.simulator.start
         wp.launch(draw_starts, dim=self.num_envs, device=self.device,
-                  inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self.origin],
-                  outputs=[self.episode_count, self.route, self.target_index, self.leg_start, self.previous_distance,
-                           self.last_action, self.episode_length, self.episode_return, self.target_world,
-                           start.position, start.orientation, start.velocity, start.sheet, start.wind_speed,
-                           start.wind_direction, start.gust_scale, start.foil_scale, start.noise_scale])
+                  inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self._course,
+                          self._start_rows])
         self.simulator.reset_masked(mask)
 
     # --- host calls --------------------------------------------------------------------------------

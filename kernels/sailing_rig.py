@@ -20,7 +20,7 @@ from .rigid_body import STATUS_BAD_INPUT, STATUS_NONFINITE
 from .spatial import DEGREES, point_velocity, vec6, wrench_at
 from .wind_field import GustModel, wind_at_height
 
-__all__ = ["RigParameters", "sailing_rig", "reset_rig"]
+__all__ = ["RigParameters", "RigControl", "RigState", "RigSurroundings", "sailing_rig", "reset_rig"]
 
 
 @wp.struct
@@ -82,6 +82,50 @@ class RigParameters:
     """1: the original V-C's other tuning (rudder force x 0.3, keel minus 0.6 of the sail's side force,
     sail force x 0.1 outside 5-160 degrees of attack)."""
 
+@wp.struct
+class RigControl:
+    """What is commanded of every boat's rig, N rows."""
+
+    rudder: wp.array(dtype=float)
+    """Rudder angle to steer to [rad]; positive turns the boat to port (within the rudder limit)."""
+    sheet: wp.array(dtype=float)
+    """Sheet: largest boom angle either side [rad] (0 to the limit)."""
+    propeller: wp.array(dtype=int)
+    """Propeller level, -max_level ... +max_level."""
+
+
+@wp.struct
+class RigState:
+    """What moves in every boat's rig, and its per-episode foil factors, N rows."""
+
+    rudder_angle: wp.array(dtype=float)
+    """Actual rudder angle [rad]."""
+    sheet_limit: wp.array(dtype=float)
+    """Actual largest boom angle either side [rad] (follows the sheet command)."""
+    boom_angle: wp.array(dtype=float)
+    """Boom angle, positive with the boom to port [rad]."""
+    boom_rate: wp.array(dtype=float)
+    """[rad/s]"""
+    foil_scale: wp.array(dtype=wp.vec3)
+    """Factors on the lift and drag coefficients of the (sail, keel, rudder) (1: as tabulated)."""
+
+
+@wp.struct
+class RigSurroundings:
+    """What the rig reads of its boat and the air and water around it, N rows."""
+
+    position: wp.array(dtype=wp.vec3)
+    """Body origin, world frame [m]."""
+    orientation: wp.array(dtype=wp.quat)
+    """Body (FLU) -> world."""
+    velocity: wp.array(dtype=vec6)
+    """Fossen's nu: body-frame velocity [m/s] and angular velocity [rad/s]."""
+    water_velocity: wp.array(dtype=wp.vec3)
+    """The water's orbital velocity at the boat, body frame [m/s]."""
+    wind_velocity: wp.array(dtype=wp.vec3)
+    """The true wind at the reference height, world frame [m/s]."""
+
+
 
 @wp.func
 def _approach(value: float, target: float, max_step: float) -> float:
@@ -99,19 +143,9 @@ def sailing_rig(
     tables: FoilTables,
     gusts: GustModel,
     dt: float,
-    position: wp.array(dtype=wp.vec3),
-    orientation: wp.array(dtype=wp.quat),
-    velocity: wp.array(dtype=vec6),
-    water_velocity: wp.array(dtype=wp.vec3),
-    wind_velocity: wp.array(dtype=wp.vec3),
-    foil_scale: wp.array(dtype=wp.vec3),
-    rudder_command: wp.array(dtype=float),
-    sheet_command: wp.array(dtype=float),
-    propeller_command: wp.array(dtype=int),
-    rudder_angle: wp.array(dtype=float),
-    sheet_limit: wp.array(dtype=float),
-    boom_angle: wp.array(dtype=float),
-    boom_rate: wp.array(dtype=float),
+    around: RigSurroundings,
+    control: RigControl,
+    state: RigState,
     model_wrench: wp.array(dtype=vec6),
     status: wp.array(dtype=int),
 ):
@@ -119,30 +153,30 @@ def sailing_rig(
     wrenches are added to ``model_wrench``. Commands: rudder and sheet angles [rad], propeller level.
     ``foil_scale``: factors on the (sail, keel, rudder) lift and drag coefficients."""
     boat = wp.tid()
-    if not (wp.isfinite(rudder_command[boat]) and wp.isfinite(sheet_command[boat])
-            and wp.isfinite(wind_velocity[boat])):
+    if not (wp.isfinite(control.rudder[boat]) and wp.isfinite(control.sheet[boat])
+            and wp.isfinite(around.wind_velocity[boat])):
         status[boat] = status[boat] | STATUS_BAD_INPUT | STATUS_NONFINITE
         return
-    rotation = orientation[boat]
-    nu = velocity[boat]
-    scale = foil_scale[boat]
+    rotation = around.orientation[boat]
+    nu = around.velocity[boat]
+    scale = state.foil_scale[boat]
     up = wp.vec3(0.0, 0.0, 1.0)
     down = wp.vec3(0.0, 0.0, -1.0)
 
     # Actuators.
-    rudder = _approach(rudder_angle[boat], wp.clamp(rudder_command[boat], -rig.rudder_limit, rig.rudder_limit),
+    rudder = _approach(state.rudder_angle[boat], wp.clamp(control.rudder[boat], -rig.rudder_limit, rig.rudder_limit),
                        rig.rudder_rate * dt)
-    limit = _approach(sheet_limit[boat], wp.clamp(sheet_command[boat], 0.0, rig.sheet_limit_max), rig.sheet_rate * dt)
-    rudder_angle[boat] = rudder
-    sheet_limit[boat] = limit
+    limit = _approach(state.sheet_limit[boat], wp.clamp(control.sheet[boat], 0.0, rig.sheet_limit_max), rig.sheet_rate * dt)
+    state.rudder_angle[boat] = rudder
+    state.sheet_limit[boat] = limit
 
     # Sail: apparent wind at the centre of effort, which swings with the boom.
-    boom = boom_angle[boat]
-    swing = boom_rate[boat]
+    boom = state.boom_angle[boat]
+    swing = state.boom_rate[boat]
     boom_direction = wp.vec3(-wp.cos(boom), wp.sin(boom), 0.0)
     sail_center = wp.vec3(rig.mast_step[0], rig.mast_step[1], rig.sail_height) + rig.sail_arm * boom_direction
-    sail_world = position[boat] + wp.quat_rotate(rotation, sail_center)
-    wind = wp.quat_rotate_inv(rotation, wind_at_height(wind_velocity[boat], sail_world[2], gusts))
+    sail_world = around.position[boat] + wp.quat_rotate(rotation, sail_center)
+    wind = wp.quat_rotate_inv(rotation, wind_at_height(around.wind_velocity[boat], sail_world[2], gusts))
     swing_velocity = (rig.sail_arm * swing) * wp.vec3(wp.sin(boom), wp.cos(boom), 0.0)
     sail_flow = wind - (point_velocity(nu, sail_center) + swing_velocity)
     sail = foil_force(sail_flow, boom_direction, up, rig.sail_area, rig.air_density, tables.sail_lift,
@@ -164,11 +198,11 @@ def sailing_rig(
     elif new_boom < -limit:
         new_boom = -limit
         rate = wp.max(rate, 0.0)
-    boom_angle[boat] = new_boom
-    boom_rate[boat] = rate
+    state.boom_angle[boat] = new_boom
+    state.boom_rate[boat] = rate
 
     # Keel and rudder in the water (its orbital velocity at the boat, body frame).
-    water = water_velocity[boat]
+    water = around.water_velocity[boat]
     keel_force = scale[1] * _force(foil_force(water - point_velocity(nu, rig.keel_center), wp.vec3(-1.0, 0.0, 0.0),
                                               down, rig.keel_area, rig.water_density, tables.keel_lift,
                                               tables.keel_drag, rig.foil_lift_limit))
@@ -181,8 +215,8 @@ def sailing_rig(
         keel_force = keel_force - wp.vec3(0.0, 0.6 * sail_force[1], 0.0)
 
     # Windage: the parasitic air drag of everything that is not sail.
-    windage_world = position[boat] + wp.quat_rotate(rotation, rig.windage_center)
-    windage_wind = wp.quat_rotate_inv(rotation, wind_at_height(wind_velocity[boat], windage_world[2], gusts))
+    windage_world = around.position[boat] + wp.quat_rotate(rotation, rig.windage_center)
+    windage_wind = wp.quat_rotate_inv(rotation, wind_at_height(around.wind_velocity[boat], windage_world[2], gusts))
     windage_flow = windage_wind - point_velocity(nu, rig.windage_center)
     horizontal_squared = windage_flow[0] * windage_flow[0] + windage_flow[1] * windage_flow[1]
     abeam_share = wp.where(horizontal_squared > 0.0, windage_flow[1] * windage_flow[1] / horizontal_squared, 0.0)
@@ -190,7 +224,7 @@ def sailing_rig(
     windage_force = (0.5 * rig.air_density * windage_area * wp.length(windage_flow)) * windage_flow
 
     # Propeller: integer levels, weaker astern, along the body x axis.
-    level = wp.clamp(propeller_command[boat], -rig.max_level, rig.max_level)
+    level = wp.clamp(control.propeller[boat], -rig.max_level, rig.max_level)
     thrust = rig.thrust_per_level * float(level)
     if level < 0:
         thrust = thrust * rig.reverse_factor
@@ -207,14 +241,8 @@ def reset_rig(
     sheet: wp.array(dtype=float),
     new_foil_scale: wp.array(dtype=wp.vec3),
     sheet_limit_max: float,
-    rudder_command: wp.array(dtype=float),
-    sheet_command: wp.array(dtype=float),
-    propeller_command: wp.array(dtype=int),
-    rudder_angle: wp.array(dtype=float),
-    sheet_limit: wp.array(dtype=float),
-    boom_angle: wp.array(dtype=float),
-    boom_rate: wp.array(dtype=float),
-    foil_scale: wp.array(dtype=wp.vec3),
+    control: RigControl,
+    state: RigState,
 ):
     """For every boat whose ``mask`` is non-zero: centre the rudder and the boom, stop the propeller, set
     the sheet, command and actual boom limit alike, to ``sheet`` [rad] (clamped to [0, max]), and the
@@ -223,11 +251,11 @@ def reset_rig(
     if mask[boat] == 0:
         return
     limit = wp.clamp(sheet[boat], 0.0, sheet_limit_max)
-    rudder_command[boat] = 0.0
-    sheet_command[boat] = limit
-    propeller_command[boat] = 0
-    rudder_angle[boat] = 0.0
-    sheet_limit[boat] = limit
-    boom_angle[boat] = 0.0
-    boom_rate[boat] = 0.0
-    foil_scale[boat] = new_foil_scale[boat]
+    control.rudder[boat] = 0.0
+    control.sheet[boat] = limit
+    control.propeller[boat] = 0
+    state.rudder_angle[boat] = 0.0
+    state.sheet_limit[boat] = limit
+    state.boom_angle[boat] = 0.0
+    state.boom_rate[boat] = 0.0
+    state.foil_scale[boat] = new_foil_scale[boat]

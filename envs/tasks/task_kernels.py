@@ -12,7 +12,7 @@ import warp as wp
 from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
 
-__all__ = ["TaskParameters", "StartDistribution", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions",
+__all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "BoatView", "StartRows", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions",
            "apply_task_actions", "evaluate", "observe", "draw_starts"]
 
 EPISODE_START = wp.constant(0x3C6E_F372)
@@ -53,6 +53,79 @@ class TaskParameters:
     sail_only: int
     """1: the task has no propeller (``TaskConfig.propeller`` False): the level commanded, and the one the
     reward sees, is 0 whatever a0 is. 0 (also a zeroed struct's value): a0 sets the level."""
+
+
+@wp.struct
+class Course:
+    """Each environment's course and episode bookkeeping, N rows (the task's own arrays)."""
+
+    origin: wp.array(dtype=wp.vec3)
+    """World position of the environment's origin [m]."""
+    route: wp.array2d(dtype=wp.vec3)
+    """(N, R) the episode's waypoints from the origin [m]."""
+    target_index: wp.array(dtype=int)
+    """Index of the waypoint sailed to."""
+    leg_start: wp.array(dtype=wp.vec3)
+    """Where the current leg began, from the origin [m]."""
+    previous_distance: wp.array(dtype=float)
+    """Distance to the waypoint at the last decision [m]."""
+    last_action: wp.array2d(dtype=float)
+    """(N, 3) the actions of the last decision (0 at an episode's start)."""
+    episode_length: wp.array(dtype=wp.int32)
+    """Decisions in the episode."""
+    episode_return: wp.array(dtype=float)
+    """Reward summed over the episode."""
+    episode_count: wp.array(dtype=int)
+    """Episodes started (numbers each episode's random stream)."""
+    target_world: wp.array(dtype=wp.vec3)
+    """World position of the waypoint sailed to [m]."""
+
+
+@wp.struct
+class EpisodeEnds:
+    """What a decision's evaluation writes: its reward and how episodes ended, N rows."""
+
+    reward: wp.array(dtype=float)
+    terminated: wp.array(dtype=wp.bool)
+    time_out: wp.array(dtype=wp.bool)
+    done: wp.array(dtype=wp.bool)
+    reset_mask: wp.array(dtype=wp.int32)
+    """1 where the episode ended (the environments to restart), else 0."""
+    final_return: wp.array(dtype=float)
+    final_length: wp.array(dtype=wp.int32)
+    final_success: wp.array(dtype=float)
+    final_status: wp.array(dtype=int)
+    final_waypoints: wp.array(dtype=int)
+
+
+@wp.struct
+class BoatView:
+    """The simulator's arrays the observations read (``EBoatState``), N rows."""
+
+    position: wp.array(dtype=wp.vec3)
+    orientation: wp.array(dtype=wp.quat)
+    velocity: wp.array(dtype=vec6)
+    wind_velocity: wp.array(dtype=wp.vec3)
+    truth: wp.array2d(dtype=float)
+    readings: wp.array2d(dtype=float)
+    rudder_angle: wp.array(dtype=float)
+    boom_angle: wp.array(dtype=float)
+    sheet_limit: wp.array(dtype=float)
+
+
+@wp.struct
+class StartRows:
+    """The simulator's start rows a new episode writes (``EBoatStart``), N rows."""
+
+    position: wp.array(dtype=wp.vec3)
+    orientation: wp.array(dtype=wp.quat)
+    velocity: wp.array(dtype=vec6)
+    sheet: wp.array(dtype=float)
+    wind_speed: wp.array(dtype=float)
+    wind_direction: wp.array(dtype=float)
+    gust_scale: wp.array(dtype=float)
+    foil_scale: wp.array(dtype=wp.vec3)
+    noise_scale: wp.array(dtype=float)
 
 
 @wp.struct
@@ -182,34 +255,17 @@ def evaluate(
     actions: wp.array2d(dtype=float),
     status: wp.array(dtype=int),
     position: wp.array(dtype=wp.vec3),
-    origin: wp.array(dtype=wp.vec3),
-    route: wp.array2d(dtype=wp.vec3),
-    target_index: wp.array(dtype=int),
-    leg_start: wp.array(dtype=wp.vec3),
-    previous_distance: wp.array(dtype=float),
-    last_action: wp.array2d(dtype=float),
-    episode_length: wp.array(dtype=wp.int32),
-    episode_return: wp.array(dtype=float),
-    reward: wp.array(dtype=float),
-    terminated: wp.array(dtype=wp.bool),
-    time_out: wp.array(dtype=wp.bool),
-    done: wp.array(dtype=wp.bool),
-    reset_mask: wp.array(dtype=wp.int32),
-    target_world: wp.array(dtype=wp.vec3),
-    final_return: wp.array(dtype=float),
-    final_length: wp.array(dtype=wp.int32),
-    final_success: wp.array(dtype=float),
-    final_status: wp.array(dtype=int),
-    final_waypoints: wp.array(dtype=int),
+    course: Course,
+    ends: EpisodeEnds,
 ):
     """Reward, waypoint progress and the end of the episode after a decision (see ``RewardConfig``)."""
     env = wp.tid()
     flags = status[env]
-    index = target_index[env]
-    local = position[env] - origin[env]
-    target = route[env, index]
+    index = course.target_index[env]
+    local = position[env] - course.origin[env]
+    target = course.route[env, index]
     distance = wp.length(planar(target - local))
-    leg = wp.length(planar(target - leg_start[env]))
+    leg = wp.length(planar(target - course.leg_start[env]))
     level = float(wp.abs(commanded_level(task.sail_only == 0, actions[env, 0])))
 
     r = float(0.0)
@@ -219,7 +275,7 @@ def evaluate(
         r = -task.flagged_penalty
         ended = True
     else:
-        r = (previous_distance[env] - distance) / task.progress_scale
+        r = (course.previous_distance[env] - distance) / task.progress_scale
         if r > 0.0:
             r = r * (1.0 - task.propeller_gain * level / float(MAX_LEVEL))
         else:
@@ -231,9 +287,9 @@ def evaluate(
                 success = True
                 index = index + 1
             else:
-                leg_start[env] = target
+                course.leg_start[env] = target
                 index = index + 1
-                target = route[env, index]
+                target = course.route[env, index]
                 distance = wp.length(planar(target - local))
         elif distance > leg + task.lost_margin:
             r = r - task.lost_penalty
@@ -245,35 +301,35 @@ def evaluate(
             a = wp.clamp(a, -1.0, 1.0)
         else:
             a = 0.0
-        change = a - last_action[env, k]
+        change = a - course.last_action[env, k]
         smooth += change * change
-        last_action[env, k] = a
+        course.last_action[env, k] = a
     r = r - task.smoothness * smooth - task.time_cost
 
-    length = episode_length[env] + 1
-    total = episode_return[env] + r
+    length = course.episode_length[env] + 1
+    total = course.episode_return[env] + r
     late = (not ended) and length >= task.max_episode_length
-    reward[env] = r
-    terminated[env] = ended
-    time_out[env] = late
-    done[env] = ended or late
-    previous_distance[env] = distance
-    target_index[env] = wp.min(index, task.route_length - 1)
-    target_world[env] = origin[env] + route[env, wp.min(index, task.route_length - 1)]
-    episode_length[env] = length
-    episode_return[env] = total
+    ends.reward[env] = r
+    ends.terminated[env] = ended
+    ends.time_out[env] = late
+    ends.done[env] = ended or late
+    course.previous_distance[env] = distance
+    course.target_index[env] = wp.min(index, task.route_length - 1)
+    course.target_world[env] = course.origin[env] + course.route[env, wp.min(index, task.route_length - 1)]
+    course.episode_length[env] = length
+    course.episode_return[env] = total
     if ended or late:
-        reset_mask[env] = 1
-        final_return[env] = total
-        final_length[env] = length
-        final_status[env] = flags
-        final_waypoints[env] = index
+        ends.reset_mask[env] = 1
+        ends.final_return[env] = total
+        ends.final_length[env] = length
+        ends.final_status[env] = flags
+        ends.final_waypoints[env] = index
         if success:
-            final_success[env] = 1.0
+            ends.final_success[env] = 1.0
         else:
-            final_success[env] = 0.0
+            ends.final_success[env] = 0.0
     else:
-        reset_mask[env] = 0
+        ends.reset_mask[env] = 0
 
 
 @wp.func
@@ -291,66 +347,54 @@ def unit_clip(value: float) -> float:
 @wp.kernel(enable_backward=False)
 def observe(
     task: TaskParameters,
-    position: wp.array(dtype=wp.vec3),
-    orientation: wp.array(dtype=wp.quat),
-    velocity: wp.array(dtype=vec6),
-    wind_velocity: wp.array(dtype=wp.vec3),
-    truth: wp.array2d(dtype=float),
-    readings: wp.array2d(dtype=float),
-    rudder_angle: wp.array(dtype=float),
-    boom_angle: wp.array(dtype=float),
-    sheet_limit: wp.array(dtype=float),
-    target_world: wp.array(dtype=wp.vec3),
-    leg_start: wp.array(dtype=wp.vec3),
-    origin: wp.array(dtype=wp.vec3),
-    target_index: wp.array(dtype=int),
-    last_action: wp.array2d(dtype=float),
+    boats: BoatView,
+    course: Course,
     policy: wp.array2d(dtype=float),
     critic: wp.array2d(dtype=float),
 ):
     """The policy's observation (the task's set) and the critic's: the policy's followed by privileged
     truth (distance, bearing, velocities, attitude, true wind, progress along the route)."""
     env = wp.tid()
-    rotation = orientation[env]
+    rotation = boats.orientation[env]
     heading = heading_of(rotation)
-    target = target_world[env]
-    to_target = planar(target - position[env])
+    target = course.target_world[env]
+    to_target = planar(target - boats.position[env])
     distance = wp.length(to_target)
     bearing = wrap_angle(wp.atan2(to_target[1], to_target[0]) - heading)
-    leg = wp.length(planar(target - (origin[env] + leg_start[env])))
+    leg = wp.length(planar(target - (course.origin[env] + course.leg_start[env])))
     lost_distance = leg + task.lost_margin
     p = 0
     if task.observation_set == 0:
         policy[env, 0] = unit_clip(2.0 * distance / lost_distance - 1.0)
         policy[env, 1] = unit_clip(bearing * DEGREES / 180.0)
-        policy[env, 2] = unit_clip(velocity[env][0] / 5.0 - 1.0)
-        policy[env, 3] = unit_clip(truth[env, 14] / 15.0 - 1.0)
-        policy[env, 4] = unit_clip(truth[env, 13] * DEGREES / 180.0)
+        policy[env, 2] = unit_clip(boats.velocity[env][0] / 5.0 - 1.0)
+        policy[env, 3] = unit_clip(boats.truth[env, 14] / 15.0 - 1.0)
+        policy[env, 4] = unit_clip(boats.truth[env, 13] * DEGREES / 180.0)
         p = SEED_OBS
     else:
-        seen = planar(target - wp.vec3(readings[env, 0], readings[env, 1], 0.0))
-        seen_bearing = wp.atan2(seen[1], seen[0]) - readings[env, 12]
-        awa = readings[env, 13]
+        seen = planar(target - wp.vec3(boats.readings[env, 0], boats.readings[env, 1], 0.0))
+        seen_bearing = wp.atan2(seen[1], seen[0]) - boats.readings[env, 12]
+        awa = boats.readings[env, 13]
         policy[env, 0] = finite_or_zero(wp.length(seen) / lost_distance)
         policy[env, 1] = finite_or_zero(wp.sin(seen_bearing))
         policy[env, 2] = finite_or_zero(wp.cos(seen_bearing))
-        policy[env, 3] = finite_or_zero(readings[env, 15] / 2.0)
+        policy[env, 3] = finite_or_zero(boats.readings[env, 15] / 2.0)
         policy[env, 4] = finite_or_zero(wp.sin(awa))
         policy[env, 5] = finite_or_zero(wp.cos(awa))
-        policy[env, 6] = finite_or_zero(readings[env, 14] / 10.0)
-        policy[env, 7] = finite_or_zero(wp.atan2(readings[env, 7], readings[env, 8]))
-        policy[env, 8] = finite_or_zero(readings[env, 11] / 0.5)
-        policy[env, 9] = finite_or_zero(rudder_angle[env] / RUDDER_LIMIT)
-        policy[env, 10] = finite_or_zero(boom_angle[env] / (2.0 * SHEET_HALF))
-        policy[env, 11] = finite_or_zero(sheet_limit[env] / (2.0 * SHEET_HALF))
+        policy[env, 6] = finite_or_zero(boats.readings[env, 14] / 10.0)
+        policy[env, 7] = finite_or_zero(wp.atan2(boats.readings[env, 7], boats.readings[env, 8]))
+        policy[env, 8] = finite_or_zero(boats.readings[env, 11] / 0.5)
+        policy[env, 9] = finite_or_zero(boats.rudder_angle[env] / RUDDER_LIMIT)
+        policy[env, 10] = finite_or_zero(boats.boom_angle[env] / (2.0 * SHEET_HALF))
+        policy[env, 11] = finite_or_zero(boats.sheet_limit[env] / (2.0 * SHEET_HALF))
         for k in range(3):
-            policy[env, 12 + k] = last_action[env, k]
+            policy[env, 12 + k] = course.last_action[env, k]
         p = PLUS_OBS
     for k in range(p):
         critic[env, k] = policy[env, k]
-    nu = velocity[env]
+    nu = boats.velocity[env]
     up = wp.quat_rotate(rotation, wp.vec3(0.0, 0.0, 1.0))
-    wind = wind_velocity[env]
+    wind = boats.wind_velocity[env]
     true_wind_angle = wp.atan2(wind[1], wind[0]) - heading
     critic[env, p + 0] = finite_or_zero(distance / lost_distance)
     critic[env, p + 1] = finite_or_zero(wp.sin(bearing))
@@ -363,7 +407,7 @@ def observe(
     critic[env, p + 8] = finite_or_zero(wp.length(wind) / 10.0)
     critic[env, p + 9] = finite_or_zero(wp.sin(true_wind_angle))
     critic[env, p + 10] = finite_or_zero(wp.cos(true_wind_angle))
-    critic[env, p + 11] = float(target_index[env]) / float(task.route_length)
+    critic[env, p + 11] = float(course.target_index[env]) / float(task.route_length)
 
 
 @wp.kernel(enable_backward=False)
@@ -373,25 +417,8 @@ def draw_starts(
     seed: wp.array(dtype=int),
     first_env: int,
     reset_mask: wp.array(dtype=wp.int32),
-    origin: wp.array(dtype=wp.vec3),
-    episode_count: wp.array(dtype=int),
-    route: wp.array2d(dtype=wp.vec3),
-    target_index: wp.array(dtype=int),
-    leg_start: wp.array(dtype=wp.vec3),
-    previous_distance: wp.array(dtype=float),
-    last_action: wp.array2d(dtype=float),
-    episode_length: wp.array(dtype=wp.int32),
-    episode_return: wp.array(dtype=float),
-    target_world: wp.array(dtype=wp.vec3),
-    start_position: wp.array(dtype=wp.vec3),
-    start_orientation: wp.array(dtype=wp.quat),
-    start_velocity: wp.array(dtype=vec6),
-    start_sheet: wp.array(dtype=float),
-    start_wind_speed: wp.array(dtype=float),
-    start_wind_direction: wp.array(dtype=float),
-    start_gust_scale: wp.array(dtype=float),
-    start_foil_scale: wp.array(dtype=wp.vec3),
-    start_noise_scale: wp.array(dtype=float),
+    course: Course,
+    rows: StartRows,
 ):
     """A new episode for every environment whose ``reset_mask`` is set, from its own random stream
     (seed, environment ``first_env`` + index, episode number): the simulator's start rows and the task's
@@ -401,8 +428,8 @@ def draw_starts(
     env = wp.tid()
     if reset_mask[env] == 0:
         return
-    episode = episode_count[env] + 1
-    episode_count[env] = episode
+    episode = course.episode_count[env] + 1
+    course.episode_count[env] = episode
     state = stream_state(seed[0], EPISODE_START, episode, first_env + env)
 
     jitter = start.position_jitter * wp.vec3(2.0 * wp.randf(state) - 1.0, 2.0 * wp.randf(state) - 1.0, 0.0)
@@ -410,20 +437,20 @@ def draw_starts(
     if start.random_waypoint != 0:
         distance = from_uniform(wp.randf(state), start.waypoint_distance_low, start.waypoint_distance_high, 0.0)
         bearing = from_uniform(wp.randf(state), start.waypoint_bearing_low, start.waypoint_bearing_high, 0.0)
-        route[env, 0] = start.start_point + distance * wp.vec3(wp.cos(bearing), wp.sin(bearing), 0.0)
-    first = route[env, 0]
+        course.route[env, 0] = start.start_point + distance * wp.vec3(wp.cos(bearing), wp.sin(bearing), 0.0)
+    first = course.route[env, 0]
     heading = from_uniform(wp.randf(state), start.heading_low, start.heading_high, start.heading_step)
     if start.heading_toward_waypoint != 0:
         heading = heading + wp.atan2(first[1] - local[1], first[0] - local[0])
-    start_position[env] = origin[env] + local + wp.vec3(0.0, 0.0, start.start_height)
-    start_orientation[env] = wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), heading)
+    rows.position[env] = course.origin[env] + local + wp.vec3(0.0, 0.0, start.start_height)
+    rows.orientation[env] = wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), heading)
     surge = from_uniform(wp.randf(state), start.surge_low, start.surge_high, 0.0)
-    start_velocity[env] = vec6(surge, 0.0, 0.0, 0.0, 0.0, 0.0)
-    start_sheet[env] = from_uniform(wp.randf(state), start.sheet_low, start.sheet_high, 0.0)
-    start_wind_speed[env] = from_uniform(wp.randf(state), start.wind_speed_low, start.wind_speed_high, 0.0)
-    start_wind_direction[env] = from_uniform(wp.randf(state), start.wind_direction_low, start.wind_direction_high,
+    rows.velocity[env] = vec6(surge, 0.0, 0.0, 0.0, 0.0, 0.0)
+    rows.sheet[env] = from_uniform(wp.randf(state), start.sheet_low, start.sheet_high, 0.0)
+    rows.wind_speed[env] = from_uniform(wp.randf(state), start.wind_speed_low, start.wind_speed_high, 0.0)
+    rows.wind_direction[env] = from_uniform(wp.randf(state), start.wind_direction_low, start.wind_direction_high,
                                      start.wind_direction_step)
-    start_gust_scale[env] = from_uniform(wp.randf(state), start.gust_scale_low, start.gust_scale_high, 0.0)
+    rows.gust_scale[env] = from_uniform(wp.randf(state), start.gust_scale_low, start.gust_scale_high, 0.0)
     # Domain randomisation, from a stream of its own: the draws above stay what they were without it.
     # wp.randf advances ``dr`` here (a wp.func would get a copy of the state; see ``from_uniform``).
     dr = stream_state(seed[0], RANDOMISATION, episode, first_env + env)
@@ -431,14 +458,14 @@ def draw_starts(
     sail = (1.0 - v) + (2.0 * v) * wp.randf(dr)
     keel = (1.0 - v) + (2.0 * v) * wp.randf(dr)
     rudder = (1.0 - v) + (2.0 * v) * wp.randf(dr)
-    start_foil_scale[env] = wp.vec3(sail, keel, rudder)
-    start_noise_scale[env] = start.noise_scale_low + (start.noise_scale_high - start.noise_scale_low) * wp.randf(dr)
+    rows.foil_scale[env] = wp.vec3(sail, keel, rudder)
+    rows.noise_scale[env] = start.noise_scale_low + (start.noise_scale_high - start.noise_scale_low) * wp.randf(dr)
 
-    target_index[env] = 0
-    leg_start[env] = local
-    previous_distance[env] = wp.length(planar(first - local))
+    course.target_index[env] = 0
+    course.leg_start[env] = local
+    course.previous_distance[env] = wp.length(planar(first - local))
     for k in range(3):
-        last_action[env, k] = 0.0
-    episode_length[env] = 0
-    episode_return[env] = 0.0
-    target_world[env] = origin[env] + first
+        course.last_action[env, k] = 0.0
+    course.episode_length[env] = 0
+    course.episode_return[env] = 0.0
+    course.target_world[env] = course.origin[env] + first

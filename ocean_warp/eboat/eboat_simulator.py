@@ -11,7 +11,8 @@ import warp as wp
 from ocean_warp.fleet import Fleet
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.kernels.point_buoyancy import point_buoyancy
-from ocean_warp.kernels.sailing_rig import reset_rig, sailing_rig
+from ocean_warp.device_structs import struct_from
+from ocean_warp.kernels.sailing_rig import RigControl, RigState, RigSurroundings, reset_rig, sailing_rig
 from ocean_warp.masks import mask_of, rows_at
 from ocean_warp.ocean import Ocean
 from ocean_warp.sensors import Sensors
@@ -27,8 +28,11 @@ __all__ = ["EBoatSimulator", "SailingRig"]
 
 
 class SailingRig:
-    """Commands and actuator state of every boat's rig, and the model that turns them, with the
-    wind and the water, into sail, keel, rudder and propeller forces every substep."""
+    """Every boat's rig: its model (``parameters``, ``tables``: the E-Boat's sail, keel, rudder and
+    propeller, the water's density), its ``state`` (actuators, boom, foil factors) and its ``control`` (the
+    commands), and the force model that turns them, with the wind and the water, into sail, keel, rudder,
+    windage and propeller forces every substep. ``state`` and ``control`` are Warp structs of (N,) arrays
+    (``RigState``, ``RigControl`` in ``ocean_warp.kernels.sailing_rig``: names, units)."""
 
     def __init__(self, eboat: EBoat, count: int, wind: Wind, *, water_density: float, device):
         self.device = wp.get_device(device)
@@ -37,42 +41,31 @@ class SailingRig:
         self.parameters = eboat.rig_parameters(water_density)
         self.tables = eboat.foil_tables(self.device)
         zeros = lambda dtype=float: wp.zeros(count, dtype=dtype, device=self.device)  # noqa: E731
-        self.rudder_command = zeros()
-        """(N,) rudder angle to steer to [rad]; positive turns the boat to port (within +-60 deg)."""
-        self.sheet_command = zeros()
-        """(N,) sheet: largest boom angle either side [rad] (0 to 90 deg)."""
-        self.propeller_command = zeros(int)
-        """(N,) propeller level, -5 ... +5."""
-        self.rudder_angle = zeros()
-        """(N,) actual rudder angle [rad]."""
-        self.sheet_limit = zeros()
-        """(N,) actual boom limit [rad]."""
-        self.boom_angle = zeros()
-        """(N,) boom angle, positive to port [rad]."""
-        self.boom_rate = zeros()
-        """(N,) [rad/s]."""
-        self.foil_scale = wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=self.device)
-        """(N,) vec3: factors on the lift and drag coefficients of the (sail, keel, rudder) of each boat
-        (1: as tabulated); set per episode by :meth:`reset_masked`."""
+        self.control = struct_from(RigControl, rudder=zeros(), sheet=zeros(), propeller=zeros(int))
+        """What is commanded: rudder [rad], sheet [rad], propeller level."""
+        self.state = struct_from(RigState, rudder_angle=zeros(), sheet_limit=zeros(), boom_angle=zeros(),
+                                 boom_rate=zeros(),
+                                 foil_scale=wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=self.device))
+        """What moves (rudder and boom angles [rad], boom rate [rad/s]) and the foil factors of the episode
+        (set by :meth:`reset_masked`)."""
+        self._around: RigSurroundings | None = None
 
     def substep(self, simulator) -> None:
-        fleet = simulator.fleet
+        if self._around is None:  # the fleet's and the wind's arrays, bound once
+            fleet = simulator.fleet
+            self._around = struct_from(RigSurroundings, fleet, wind_velocity=self.wind.velocity)
         wp.launch(sailing_rig, dim=self.count, device=self.device,
-                  inputs=[self.parameters, self.tables, self.wind.gusts, simulator.config.substep_dt, fleet.position,
-                          fleet.orientation, fleet.velocity, fleet.water_velocity, self.wind.velocity,
-                          self.foil_scale, self.rudder_command, self.sheet_command, self.propeller_command],
-                  outputs=[self.rudder_angle, self.sheet_limit, self.boom_angle, self.boom_rate, fleet.model_wrench,
-                           fleet.status])
+                  inputs=[self.parameters, self.tables, self.wind.gusts, simulator.config.substep_dt, self._around,
+                          self.control, self.state],
+                  outputs=[simulator.fleet.model_wrench, simulator.fleet.status])
 
     def reset_masked(self, mask: wp.array, sheet: wp.array, foil_scale: wp.array | None = None) -> None:
         """Boats whose ``mask`` is non-zero: rudder and boom centred, propeller stopped, sheet (command and
         actual limit) at their row of ``sheet`` [rad], and their foil factors at their row of
         ``foil_scale`` (N,) vec3 (None: kept). Launches only (graph-safe)."""
         wp.launch(reset_rig, dim=self.count, device=self.device,
-                  inputs=[mask, sheet, self.foil_scale if foil_scale is None else foil_scale,
-                          self.parameters.sheet_limit_max],
-                  outputs=[self.rudder_command, self.sheet_command, self.propeller_command, self.rudder_angle,
-                           self.sheet_limit, self.boom_angle, self.boom_rate, self.foil_scale])
+                  inputs=[mask, sheet, self.state.foil_scale if foil_scale is None else foil_scale,
+                          self.parameters.sheet_limit_max, self.control, self.state])
 
 
 class _PointBuoyancyModel:
@@ -160,14 +153,15 @@ class EBoatSimulator:
         fleet, rig, wind, sensors = self.fleet, self.rig, self.wind, self.sensors
         self.state = EBoatState(
             position=fleet.position, orientation=fleet.orientation, velocity=fleet.velocity, status=fleet.status,
-            water_velocity=fleet.water_velocity, rudder_angle=rig.rudder_angle, sheet_limit=rig.sheet_limit,
-            boom_angle=rig.boom_angle, boom_rate=rig.boom_rate, wind_mean_speed=wind.mean_speed,
+            water_velocity=fleet.water_velocity, rudder_angle=rig.state.rudder_angle,
+            sheet_limit=rig.state.sheet_limit, boom_angle=rig.state.boom_angle, boom_rate=rig.state.boom_rate,
+            wind_mean_speed=wind.mean_speed,
             wind_mean_direction=wind.mean_direction, wind_speed=wind.speed, wind_direction=wind.direction,
-            wind_velocity=wind.velocity, gust_scale=wind.gust_scale, foil_scale=rig.foil_scale,
+            wind_velocity=wind.velocity, gust_scale=wind.gust_scale, foil_scale=rig.state.foil_scale,
             noise_scale=sensors.noise_scale, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
         """What moves (Warp arrays; see :class:`EBoatState` for units)."""
-        self.control = EBoatControl(rudder=rig.rudder_command, sheet=rig.sheet_command,
-                                    propeller=rig.propeller_command, wrench_world=fleet.wrench_world,
+        self.control = EBoatControl(rudder=rig.control.rudder, sheet=rig.control.sheet,
+                                    propeller=rig.control.propeller, wrench_world=fleet.wrench_world,
                                     wrench_body=fleet.wrench_body)
         """What is commanded (Warp arrays; see :class:`EBoatControl`)."""
         self.start = EBoatStart.allocate(count, device)
