@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 import ocean_warp as ow
-from ocean_warp.usd import StageRecorder, loop_path_for
+from ocean_warp.usd import FleetDrawing, OceanDrawing, StageRecorder, loop_path_for
 
 MIB = 1024.0 * 1024.0
 
@@ -46,8 +46,8 @@ def record_case(folder: str, *, boats: int, frames: int, instanced: bool, loop: 
     positions[:, :2] = rng.uniform(0.0, side, (boats, 2))
     quarter_memory = float("nan")
     start = time.perf_counter()
-    with StageRecorder(path, fps=fps, ocean=ocean, ocean_resolution=resolution, ocean_loop=loop, boats=boats,
-                       instanced=instanced, ocean_extent=(0.0, side, 0.0, side)) as recorder:
+    drawing = OceanDrawing(ocean, resolution=resolution, extent=(0.0, side, 0.0, side), loop=loop)
+    with StageRecorder(path, fps=fps, ocean=drawing, fleet=FleetDrawing(boats, instanced=instanced)) as recorder:
         for frame in range(frames):
             positions[:, :2] += rng.normal(0.0, 0.5, (boats, 2))
             yaw = rng.uniform(-np.pi, np.pi, boats)

@@ -13,7 +13,8 @@ import os
 
 import numpy as np
 
-from ocean_warp.usd import StageRecorder, render_preview, validate_stage
+from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, render_preview,
+                            validate_stage)
 
 from ..sailing_env import SailingEnv
 from ..tasks.task_configs import mission_waypoint_name
@@ -25,10 +26,14 @@ class MissionStageRecorder:
     """Records ``env``'s fleet into the stage at ``path``: ``frames_per_decision`` frames per decision."""
 
     def __init__(self, env: SailingEnv, path: str | os.PathLike, *, frames_per_decision: int,
-                 ocean_resolution: int = 32, ocean_loop: bool | None = None, **options):
-        """``ocean_loop`` None: one seamless loop where the ocean has a ``loop_period``, else a mesh per frame;
-        ``options``: more of :class:`~ocean_warp.usd.StageRecorder`'s (``instanced``, ``ascii``,
-        ``time_codes_per_second``, ...)."""
+                 ocean_resolution: int = 32, ocean_margin: float = OceanDrawing.margin,
+                 ocean_normals: bool = OceanDrawing.normals, ocean_loop: bool | None = None,
+                 instanced: bool | None = None, **options):
+        """``ocean_resolution``, ``ocean_margin`` [m], ``ocean_normals``: the ocean's
+        :class:`~ocean_warp.usd.OceanDrawing` (``resolution``, ``margin``, ``normals``); ``ocean_loop`` None:
+        one seamless loop where the ocean has a ``loop_period``, else a mesh per frame; ``instanced``: the
+        fleet's layout (:class:`~ocean_warp.usd.FleetDrawing`); ``options``: more of
+        :class:`~ocean_warp.usd.StageRecorder`'s (``ascii``, ``time_codes_per_second``, ``save_every``)."""
         self.env = env
         self.frames_per_decision = frames_per_decision
         ocean = env.simulator.ocean
@@ -38,11 +43,13 @@ class MissionStageRecorder:
         start = np.asarray(env.task.start_point, dtype=np.float64) + origin
         wind = env.simulator.state
         self.recorder = StageRecorder(
-            path, fps=float(frames_per_decision) / env.decision_period, ocean=ocean,
-            ocean_resolution=ocean_resolution, ocean_loop=loop, boats=env.num_envs, boat=env.task.simulator.boat,
-            route=route, route_labels=_waypoint_names(env.task.route), route_start=start,
-            wind_direction=float(wind.wind_mean_direction.numpy()[0]),
-            wind_speed=float(wind.wind_mean_speed.numpy()[0]), **options)
+            path, fps=float(frames_per_decision) / env.decision_period,
+            ocean=OceanDrawing(ocean, resolution=ocean_resolution, margin=ocean_margin, normals=ocean_normals,
+                               loop=loop),
+            fleet=FleetDrawing(env.num_envs, instanced=instanced, boat=env.task.simulator.boat),
+            route=RouteDrawing(route, labels=_waypoint_names(env.task.route), start=start),
+            wind=WindArrow(float(wind.wind_mean_direction.numpy()[0]), speed=float(wind.wind_mean_speed.numpy()[0])),
+            **options)
         self._held = np.zeros(env.num_envs, dtype=bool)
         self._held_frame: dict[str, np.ndarray] = {}
 

@@ -4,9 +4,9 @@ with USD's validators and draw a preview PNG of it.
 
 Example::
 
-    from ocean_warp.usd import StageRecorder, record_eboat, render_preview, validate_stage
+    from ocean_warp.usd import RouteDrawing, StageRecorder, record_eboat, render_preview, validate_stage
 
-    with StageRecorder.for_eboat("out/run.usdc", sim, fps=5.0, route=waypoints) as recorder:
+    with StageRecorder.for_eboat("out/run.usdc", sim, fps=5.0, route=RouteDrawing(waypoints)) as recorder:
         for step in range(1200):
             if step % 4 == 0:                      # dt 0.05 s: 5 frames per second of simulated time
                 record_eboat(recorder, sim)
@@ -16,8 +16,9 @@ Example::
 
 Stages are Z up, 1 metre per unit, with timeCodesPerSecond = framesPerSecond = ``time_codes_per_second``
 (default 24; time code = time [s] x that), so they play in real time whatever ``fps`` they were recorded
-at. The prim layout and model kinds are in :mod:`ocean_warp.usd.paths`. Importing this package imports
-``pxr`` (usd-core).
+at. What a recorder draws is given in option groups (:mod:`ocean_warp.usd.stage_options`):
+``OceanDrawing``, ``FleetDrawing``, ``RouteDrawing`` and ``WindArrow``. The prim layout and model kinds are
+in :mod:`ocean_warp.usd.paths`. Importing this package imports ``pxr`` (usd-core).
 """
 
 from .boat_prototype import BoatParts, eboat_parts
@@ -26,8 +27,9 @@ from .preview import render_preview
 from .recorder import (INSTANCING_THRESHOLD, TIME_CODES_PER_SECOND, StageRecorder, loop_path_for, record_eboat,
                        write_ocean_loop)
 from .stage_file import check_stage_path
+from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow
 from .stage_validation import validate_stage
 
 __all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "validate_stage", "render_preview",
            "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
-           "loop_path_for", "check_stage_path"]
+           "loop_path_for", "check_stage_path", "OceanDrawing", "FleetDrawing", "RouteDrawing", "WindArrow"]

@@ -37,15 +37,16 @@ _MEAN = np.array(LOOKS_BY_NAME["Sea"].color)
 _CREST = np.array([0.80, 0.93, 0.97])
 
 
-def check_extent(owner: str, extent) -> tuple[float, float, float, float]:
-    """``extent`` as (xmin, xmax, ymin, ymax) [m] of finite numbers with xmax > xmin and ymax > ymin."""
+def check_extent(owner: str, extent, *, field: str = "extent") -> tuple[float, float, float, float]:
+    """``extent`` as (xmin, xmax, ymin, ymax) [m] of finite numbers with xmax > xmin and ymax > ymin, else
+    ValueError naming ``owner.field``."""
     try:
         values = tuple(float(v) for v in extent)
     except (TypeError, ValueError):
-        raise ValueError(f"{owner}: ocean_extent must be (xmin, xmax, ymin, ymax) [m], got {extent!r}") from None
+        raise ValueError(f"{owner}.{field} must be (xmin, xmax, ymin, ymax) [m], got {extent!r}") from None
     if len(values) != 4 or not all(math.isfinite(v) for v in values) or values[1] <= values[0] \
             or values[3] <= values[2]:
-        raise ValueError(f"{owner}: ocean_extent must be (xmin, xmax, ymin, ymax) [m], finite, with xmax > xmin and "
+        raise ValueError(f"{owner}.{field} must be (xmin, xmax, ymin, ymax) [m], finite, with xmax > xmin and "
                          f"ymax > ymin, got {extent!r}")
     return values
 

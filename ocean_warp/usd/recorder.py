@@ -3,12 +3,13 @@ rudder, the route and the wind; and write one seamless loop of an ocean on its o
 
 Example::
 
-    from ocean_warp.usd import StageRecorder, record_eboat
+    from ocean_warp.usd import OceanDrawing, RouteDrawing, StageRecorder, record_eboat
 
     sim = EBoatSimulator(config, 16, device="cuda:0")
     every = 4                                            # record every 4th step: 5 frames/s at dt 0.05 s
     with StageRecorder.for_eboat("out/run.usdc", sim, fps=1 / (every * sim.config.dt),
-                                 route=waypoints, ocean_margin=30.0) as recorder:
+                                 ocean=OceanDrawing(sim.ocean, margin=30.0),
+                                 route=RouteDrawing(waypoints)) as recorder:
         for step in range(2400):
             if step % every == 0:
                 record_eboat(recorder, sim)
@@ -17,7 +18,8 @@ Example::
 
 Layout of the stage: ``ocean_warp.usd.paths``. Time code = time [s] x time_codes_per_second (default 24,
 the stage's timeCodesPerSecond and framesPerSecond), so a viewer playing at the stage's frame rate shows
-one second of simulation in one second, whatever the rate the frames were recorded at (``fps``).
+one second of simulation in one second, whatever the rate the frames were recorded at (``fps``). What
+the stage shows is given in option groups: :mod:`ocean_warp.usd.stage_options`.
 """
 
 from __future__ import annotations
@@ -28,29 +30,29 @@ import os
 import numpy as np
 from pxr import Sdf, Usd
 
-from ..eboat.eboat import EBoatConfig
 from ..ocean import Ocean
-from ..validation import require_finite, require_int_in_range, require_non_negative, require_positive
+from ..validation import require_int_in_range, require_positive
 from .boat_prototype import define_boat_prototype, eboat_parts
 from .fleet_prims import InstancedFleetWriter, PrimFleetWriter
 from .markers import define_route, define_wind_arrow
 from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
 from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST
 from .stage_file import StageFile
+from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow, _require_loop
 from .view import define_camera, define_lights
 
 __all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
            "loop_path_for"]
 
 INSTANCING_THRESHOLD = 64
-"""Fleets larger than this are written as point instancers unless ``instanced`` says otherwise."""
+"""Fleets larger than this are written as point instancers unless ``FleetDrawing.instanced`` says otherwise."""
 TIME_CODES_PER_SECOND = 24.0
 """Default time codes (and frames) per second of a stage: Blender's default frame rate, so it plays the
 stage in real time."""
 
 
 def loop_path_for(path) -> str:
-    """Where a recording at ``path`` puts its ocean loop (with ``ocean_loop=True``): ``<stem>_ocean_loop<ext>``
+    """Where a recording at ``path`` puts its ocean loop (with ``OceanDrawing(loop=True)``): ``<stem>_ocean_loop<ext>``
     beside it."""
     stem, extension = os.path.splitext(os.path.abspath(os.fspath(path)))
     return f"{stem}_ocean_loop{extension}"
@@ -76,13 +78,6 @@ def _write_loop_frames(stage, ocean: Ocean, lattice: OceanLattice, time_codes_pe
         writer.write(float(code), ocean_fields_at(ocean, float(code) / time_codes_per_second))
 
 
-def _require_loop(owner: str, ocean: Ocean) -> float:
-    if ocean.config.loop_period is None:
-        raise ValueError(f"{owner}: ocean_loop needs an ocean built with OceanConfig.loop_period set (its "
-                         "frequencies are then multiples of 2 pi / loop_period, so the sea repeats exactly)")
-    return ocean.config.loop_period
-
-
 def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, time_codes_per_second: float = TIME_CODES_PER_SECOND,
                      resolution: int = 128, extent=None, normals: bool = False, colors: bool = True,
                      ascii: bool | None = None) -> str:
@@ -101,7 +96,7 @@ def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, time_codes_per_se
     owner = "write_ocean_loop"
     if not isinstance(ocean, Ocean):
         raise ValueError(f"{owner}: ocean must be an Ocean, got {type(ocean).__name__}")
-    period = _require_loop(owner, ocean)
+    period = _require_loop(f"{owner}: ocean_loop", ocean)
     fps = require_positive(owner, "fps", fps, unit=" [frames/s]")
     resolution = require_int_in_range(owner, "resolution", resolution, 2, 4096)
     tile = ocean.config.tile_size
@@ -121,16 +116,13 @@ def write_ocean_loop(path, ocean: Ocean, *, fps: float = 10.0, time_codes_per_se
     return stage_file.commit()
 
 
-def _finite_rows(owner: str, name: str, value, widths: tuple[int, ...]) -> np.ndarray:
-    """``value`` as a float64 array of one or more rows of one of ``widths`` finite numbers, else ValueError."""
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        array = np.zeros((0,))
-    if array.ndim != 2 or array.shape[1] not in widths or len(array) == 0 or not np.all(np.isfinite(array)):
-        raise ValueError(f"{owner}.{name} must be finite rows of {' or '.join(map(str, widths))} coordinates [m], "
-                         f"got {value!r}")
-    return array
+def _require_group(owner: str, name: str, value, group: type, example: str, *, optional: bool) -> None:
+    """ValueError unless ``value`` is a ``group`` (or None where ``optional``), saying what to pass."""
+    if (value is None and optional) or isinstance(value, group):
+        return
+    article = "an" if group.__name__[0] in "AEIOU" else "a"
+    allowed = f"{article} {group.__name__}" + (" or None" if optional else "")
+    raise ValueError(f"{owner}.{name} must be {allowed} (e.g. {name}={example}), got {type(value).__name__}")
 
 
 class StageRecorder:
@@ -146,28 +138,14 @@ class StageRecorder:
       Blender's default frame rate; 30, or any positive value). Time code = t [s] x this, so one
       second of simulation plays in one second; the samples stay one per recorded frame (a viewer
       interpolates between them).
-    - ``ocean``: the :class:`Ocean` to draw (None: no ocean). Each frame evaluates it at the frame's time
-      (its clock is left as it was).
-    - ``ocean_resolution``: at most this many mesh vertices along either side of the ocean's extent; the
-      spacing is a whole number of the ocean's grid cells (the vertices are grid nodes). Each frame costs
-      12 bytes per vertex for the points, as much again for colours and for normals.
-    - ``ocean_extent``: (xmin, xmax, ymin, ymax) [m] of the ocean mesh (the patch is periodic and tiled to
-      cover it). None: the route and the boats' positions, plus ``ocean_margin`` [m]: the positions at the
-      first frame for a mesh per frame (written as it comes), every recorded position for a loop (written
-      at :meth:`close`), so that a loop's ocean lies under every boat wherever it sailed.
-    - ``ocean_normals``, ``ocean_colors``: vertex normals; a displayColor by height (deep blue to foam).
-    - ``ocean_loop``: write one seamless loop of the ocean (a sibling file, :func:`loop_path_for`) that the
-      stage repeats over the whole recording with value clips, instead of a mesh per frame. Needs an ocean
-      with ``OceanConfig.loop_period``; the boats, simulated on that same ocean, ride exactly the surface
-      shown. Worth it when the recording is much longer than the loop.
-    - ``boats``: number of boats (0: none); ``instanced``: one point instancer per moving part (True) or one
-      prim per boat (False); None picks instancers above :data:`INSTANCING_THRESHOLD` boats.
-    - ``boat``: the ``EBoatConfig`` whose dimensions the boats are drawn with (default V-C).
-    - ``route``: waypoints (R, 2) (or (R, 3)) [m], drawn as buoys and the path through them;
-      ``route_labels``: their R names (e.g. ``"BCDACA"``), the buoys' display names; ``route_start`` (2,)
-      or (3,) [m]: where the boats set off, the first point of the path (e.g. A for the BCDACA mission).
-    - ``wind_direction`` [rad, where it blows towards], ``wind_speed`` [m/s], ``wind_origin`` (3,) [m]: the
-      wind arrow (drawn when a direction is given; origin default: a corner of the ocean, 8 m up).
+    - ``ocean``: an :class:`~ocean_warp.usd.stage_options.OceanDrawing`, the ocean to draw and how (mesh
+      resolution, extent and margin, normals, colours, a seamless loop); None: no ocean.
+    - ``fleet``: a :class:`~ocean_warp.usd.stage_options.FleetDrawing`, the number of boats (default
+      none), their layout (prims or point instancers) and dimensions.
+    - ``route``: a :class:`~ocean_warp.usd.stage_options.RouteDrawing`, the waypoints drawn as buoys and
+      the path from the start through them; None: no route.
+    - ``wind``: a :class:`~ocean_warp.usd.stage_options.WindArrow`, the wind's direction and speed and
+      where the arrow stands; None: no arrow.
     - ``ascii``: text instead of crate (see ``path``); ``save_every``: frames between saves of a crate file.
 
     The stage also holds materials for every visible part (``ocean_warp.usd.materials``), a camera framing
@@ -179,53 +157,34 @@ class StageRecorder:
     """
 
     def __init__(self, path, *, fps: float, time_codes_per_second: float = TIME_CODES_PER_SECOND,
-                 ocean: Ocean | None = None, ocean_resolution: int = 64, ocean_extent=None, ocean_margin: float = 20.0,
-                 ocean_normals: bool = False, ocean_colors: bool = True, ocean_loop: bool = False, boats: int = 0,
-                 instanced: bool | None = None, boat=None, route=None, route_labels=None, route_start=None,
-                 wind_direction: float | None = None, wind_speed: float = 5.0, wind_origin=None,
-                 ascii: bool | None = None, save_every: int = 100):
+                 ocean: OceanDrawing | None = None, fleet: FleetDrawing = FleetDrawing(),
+                 route: RouteDrawing | None = None, wind: WindArrow | None = None, ascii: bool | None = None,
+                 save_every: int = 100):
         owner = "StageRecorder"
         self.fps = require_positive(owner, "fps", fps, unit=" [frames/s]")
         self.time_codes_per_second = require_positive(owner, "time_codes_per_second", time_codes_per_second,
                                                       unit=" [1/s]")
-        if ocean is not None and not isinstance(ocean, Ocean):
-            raise ValueError(f"{owner}: ocean must be an Ocean or None, got {type(ocean).__name__}")
-        self.ocean = ocean
-        self.ocean_resolution = require_int_in_range(owner, "ocean_resolution", ocean_resolution, 2, 4096)
-        self._extent = check_extent(owner, ocean_extent) if ocean_extent is not None else None
-        self.ocean_margin = require_non_negative(owner, "ocean_margin", ocean_margin, unit=" [m]")
-        flags = (("ocean_normals", ocean_normals), ("ocean_colors", ocean_colors), ("ocean_loop", ocean_loop))
-        for name, flag in flags:
-            if not isinstance(flag, bool):
-                raise ValueError(f"{owner}.{name} must be True or False, got {flag!r}")
-        self.ocean_normals, self.ocean_colors, self.ocean_loop = ocean_normals, ocean_colors, ocean_loop
-        if ocean_loop:
-            if ocean is None:
-                raise ValueError(f"{owner}: ocean_loop=True needs an ocean")
-            _require_loop(owner, ocean)
-        self.boats = require_int_in_range(owner, "boats", boats, 0, 2**24)
-        if instanced is not None and not isinstance(instanced, bool):
-            raise ValueError(f"{owner}.instanced must be True, False or None, got {instanced!r}")
-        self.instanced = instanced if instanced is not None else self.boats > INSTANCING_THRESHOLD
-        if boat is not None and not isinstance(boat, EBoatConfig):
-            raise ValueError(f"{owner}.boat must be an EBoatConfig or None, got {type(boat).__name__}")
-        self.route = _finite_rows(owner, "route", route, (2, 3)) if route is not None else None
-        self.route_labels = None
-        if route_labels is not None:
-            if self.route is None or len(route_labels) != len(self.route):
-                raise ValueError(f"{owner}.route_labels must name each of the route's "
-                                 f"{0 if self.route is None else len(self.route)} waypoints, got {len(route_labels)}")
-            self.route_labels = [str(label) for label in route_labels]
-        self.route_start = None
-        if route_start is not None:
-            if self.route is None:
-                raise ValueError(f"{owner}.route_start needs a route")
-            self.route_start = _finite_rows(owner, "route_start", [route_start], (2, 3))[0]
-        self.wind = None
-        if wind_direction is not None:
-            self.wind = (require_finite(owner, "wind_direction", wind_direction),
-                         require_non_negative(owner, "wind_speed", wind_speed, unit=" [m/s]"))
-        self._wind_origin = _finite_rows(owner, "wind_origin", [wind_origin], (3,))[0] if wind_origin is not None \
+        _require_group(owner, "ocean", ocean, OceanDrawing, "OceanDrawing(ocean)", optional=True)
+        _require_group(owner, "fleet", fleet, FleetDrawing, "FleetDrawing(count)", optional=False)
+        _require_group(owner, "route", route, RouteDrawing, "RouteDrawing(points)", optional=True)
+        _require_group(owner, "wind", wind, WindArrow, "WindArrow(direction)", optional=True)
+        # The groups' fields as the recorder's attributes; without an ocean, OceanDrawing's defaults (the
+        # margin still places the wind arrow).
+        self.ocean = ocean.ocean if ocean is not None else None
+        self.ocean_resolution = ocean.resolution if ocean is not None else OceanDrawing.resolution
+        self._extent = ocean.extent if ocean is not None else None
+        self.ocean_margin = ocean.margin if ocean is not None else OceanDrawing.margin
+        self.ocean_normals = ocean.normals if ocean is not None else OceanDrawing.normals
+        self.ocean_colors = ocean.colors if ocean is not None else OceanDrawing.colors
+        self.ocean_loop = ocean.loop if ocean is not None else OceanDrawing.loop
+        self.boats = fleet.count
+        self.instanced = fleet.instanced if fleet.instanced is not None else self.boats > INSTANCING_THRESHOLD
+        self.route = np.array(route.points, dtype=np.float64) if route is not None else None
+        self.route_labels = list(route.labels) if route is not None and route.labels is not None else None
+        self.route_start = np.array(route.start, dtype=np.float64) if route is not None and route.start is not None \
+            else None
+        self.wind = (wind.direction, wind.speed) if wind is not None else None
+        self._wind_origin = np.array(wind.origin, dtype=np.float64) if wind is not None and wind.origin is not None \
             else None
         save_every = require_int_in_range(owner, "save_every", save_every, 1, 10**9)
 
@@ -238,7 +197,7 @@ class StageRecorder:
             stage.CreateClassPrim(LIBRARY)
             self._fleet = None
             if self.boats:
-                parts = eboat_parts(boat)
+                parts = eboat_parts(fleet.boat)
                 prototype = define_boat_prototype(stage, BOAT_PROTOTYPE, parts)
                 layout = InstancedFleetWriter if self.instanced else PrimFleetWriter
                 self._fleet = layout(stage, self.boats, prototype, parts)
@@ -257,14 +216,18 @@ class StageRecorder:
     # --- construction helpers -------------------------------------------------------------------
     @classmethod
     def for_eboat(cls, path, simulator, *, fps: float, **options) -> "StageRecorder":
-        """A recorder for an ``EBoatSimulator``: its ocean, boat count, boat dimensions and the mean wind of
-        its first environment, unless ``options`` say otherwise (any argument of the constructor)."""
-        options.setdefault("ocean", simulator.ocean)
-        options.setdefault("boats", simulator.count)
-        options.setdefault("boat", simulator.config.boat)
-        if "wind_direction" not in options:
-            options["wind_direction"] = float(simulator.state.wind_mean_direction.numpy()[0])
-            options.setdefault("wind_speed", float(simulator.state.wind_mean_speed.numpy()[0]))
+        """A recorder for an ``EBoatSimulator``: ``ocean=OceanDrawing(simulator.ocean)``,
+        ``fleet=FleetDrawing(simulator.count, boat=simulator.config.boat)`` and ``wind=WindArrow(...)`` with
+        the mean wind direction and speed of its first environment, unless ``options`` give them (any
+        keyword of the constructor: ``ocean=OceanDrawing(simulator.ocean, loop=True)``, ``route=...``,
+        ``wind=None`` for no arrow, ...)."""
+        if "ocean" not in options:
+            options["ocean"] = OceanDrawing(simulator.ocean)
+        if "fleet" not in options:
+            options["fleet"] = FleetDrawing(simulator.count, boat=simulator.config.boat)
+        if "wind" not in options:
+            options["wind"] = WindArrow(float(simulator.state.wind_mean_direction.numpy()[0]),
+                                        speed=float(simulator.state.wind_mean_speed.numpy()[0]))
         return cls(path, fps=fps, **options)
 
     @property
@@ -274,7 +237,7 @@ class StageRecorder:
 
     @property
     def loop_path(self) -> str | None:
-        """Where the ocean loop will be (with ``ocean_loop``), else None."""
+        """Where the ocean loop will be (with ``OceanDrawing(loop=True)``), else None."""
         return loop_path_for(self.path) if self.ocean_loop else None
 
     # --- recording ------------------------------------------------------------------------------

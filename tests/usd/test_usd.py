@@ -17,7 +17,8 @@ from scipy.spatial.transform import Rotation
 import ocean_warp as ow
 from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.sheet import BOOM_HEIGHT, HULL_LINK_HEIGHT, MAST_STEP
-from ocean_warp.usd import StageRecorder, record_eboat, render_preview, validate_stage, write_ocean_loop
+from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, record_eboat,
+                            render_preview, validate_stage, write_ocean_loop)
 
 FPS = 5.0
 EVERY = 4  # record every 4th step of dt 0.05 s: 5 frames per second of simulated time
@@ -32,17 +33,19 @@ def small_sea(**overrides) -> ow.OceanConfig:
                                     choppiness=0.5, spreading=6.0), **overrides})
 
 
-def sail(device, path, *, instanced, steps=24, ocean=None, **options):
-    """Three E-Boats sailing with the rudder over in a small choppy sea, recorded every EVERY-th step;
-    returns the stage path and, per recorded step, the simulator's time and host state."""
+def sail(device, path, *, instanced, steps=24, ocean=None, loop=False):
+    """Three E-Boats sailing with the rudder over in a small choppy sea (drawn as one seamless loop with
+    ``loop``), recorded every EVERY-th step; returns the stage path and, per recorded step, the simulator's
+    time and host state."""
     config = EBoatSimulatorConfig(ocean=ocean or small_sea(), wind=ow.WindConfig(speed=6.0, direction=1.0))
     sim = EBoatSimulator(config, 3, device=device)
     sim.reset(position=[[0.0, 0.0, 0.05], [10.0, 5.0, 0.05], [-8.0, 12.0, 0.05]], heading=[0.0, 1.2, 2.5],
               sheet=0.8)
     sim.tensors.control.rudder[:] = sim.tensors.control.rudder.new_tensor([0.3, -0.4, 0.1])
     truth = []
-    with StageRecorder.for_eboat(path, sim, fps=FPS, instanced=instanced, route=[[0, 0], [30, 10], [20, 40]],
-                                 **options) as recorder:
+    options = dict(ocean=OceanDrawing(sim.ocean, loop=True)) if loop else {}
+    with StageRecorder.for_eboat(path, sim, fps=FPS, fleet=FleetDrawing(3, instanced=instanced, boat=sim.config.boat),
+                                 route=RouteDrawing([[0, 0], [30, 10], [20, 40]]), **options) as recorder:
         for step in range(steps):
             if step % EVERY == 0:
                 record_eboat(recorder, sim)
@@ -122,9 +125,9 @@ def test_stage_validates_with_every_option(tmp_path):
     config = small_sea(loop_period=8.0)
     ocean = ow.Ocean(config, device="cpu")
     path = tmp_path / "scene.usda"
-    with StageRecorder(path, fps=10.0, ocean=ocean, ocean_normals=True, boats=2, instanced=True,
-                       route=np.array([[0.0, 0.0], [15.0, 5.0]]), route_labels="AB", wind_direction=0.5,
-                       wind_speed=7.0) as recorder:
+    with StageRecorder(path, fps=10.0, ocean=OceanDrawing(ocean, normals=True), fleet=FleetDrawing(2, instanced=True),
+                       route=RouteDrawing(np.array([[0.0, 0.0], [15.0, 5.0]]), labels="AB"),
+                       wind=WindArrow(0.5, speed=7.0)) as recorder:
         for k in range(3):
             recorder.record(0.1 * k, [[0, 0, 0], [5, 5, 0]], [[0, 0, 0, 1]] * 2, [0.2, -0.3], [0.0, 0.1])
     assert validate_stage(path) == []
@@ -146,14 +149,15 @@ def test_exception_while_recording_leaves_nothing(tmp_path):
     target.write_bytes(b"the previous recording")
     ocean = ow.Ocean(small_sea(), device="cpu")
     with pytest.raises(RuntimeError, match="simulation blew up"):
-        with StageRecorder(target, fps=10.0, ocean=ocean, boats=2, save_every=1) as recorder:
+        with StageRecorder(target, fps=10.0, ocean=OceanDrawing(ocean), fleet=FleetDrawing(2),
+                           save_every=1) as recorder:
             for k in range(3):
                 recorder.record(0.1 * k, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
             raise RuntimeError("simulation blew up")
     assert target.read_bytes() == b"the previous recording"
     assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
     # abort() without a context manager does the same, and a closed recorder takes no more frames.
-    recorder = StageRecorder(tmp_path / "other.usdc", fps=10.0, ocean=ocean)
+    recorder = StageRecorder(tmp_path / "other.usdc", fps=10.0, ocean=OceanDrawing(ocean))
     recorder.record(0.0)
     recorder.abort()
     assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
@@ -216,7 +220,7 @@ def test_recorded_ocean_loop_repeats_under_the_boats(device, tmp_path):
     # A 4 s loop under 6 s of sailing: the stage shows the loop's frames through value clips, and they are
     # the surface the boats were simulated on.
     path, truth, sim = sail(device, tmp_path / "run.usdc", instanced=False, steps=121,
-                            ocean=small_sea(loop_period=4.0), ocean_loop=True)
+                            ocean=small_sea(loop_period=4.0), loop=True)
     assert sorted(os.listdir(tmp_path)) == ["run.usdc", "run_ocean_loop.usdc"]
     stage = Usd.Stage.Open(path)
     mesh = UsdGeom.Mesh.Get(stage, "/World/Ocean")
@@ -249,8 +253,9 @@ def test_looping_ocean_lies_under_every_boat_wherever_it_sailed(tmp_path, rng):
     start = rng.uniform(-5.0, 5.0, size=(2, 3))
     drift = rng.uniform(-1.0, 1.0, size=(2, 3)) * [40.0, 40.0, 0.0]
     quaternions = np.tile([0.0, 0.0, 0.0, 1.0], (2, 1))
-    recorder = StageRecorder(tmp_path / "far.usdc", fps=2.0, ocean=ocean, ocean_loop=True, ocean_resolution=16,
-                             ocean_margin=margin, boats=2, route=[[0.0, 0.0], [4.0, 3.0]])
+    recorder = StageRecorder(tmp_path / "far.usdc", fps=2.0,
+                             ocean=OceanDrawing(ocean, resolution=16, margin=margin, loop=True),
+                             fleet=FleetDrawing(2), route=RouteDrawing([[0.0, 0.0], [4.0, 3.0]]))
     positions = [start + drift * k / 10.0 for k in range(11)]
     for k, where in enumerate(positions):
         recorder.record(0.5 * (k + 1), where, quaternions)
@@ -276,33 +281,95 @@ def test_ocean_lattice_covers_its_extent_on_grid_nodes(resolution, xs, ys):
     assert lattice.vertex_count == len(xs) * len(ys)
 
 
+def _sea(**overrides):
+    return ow.Ocean(small_sea(**overrides), device="cpu")
+
+
 @pytest.mark.parametrize("arguments,name", [
-    (dict(fps=0.0), "fps"),
-    (dict(fps=10.0, time_codes_per_second=0.0), "time_codes_per_second"),
-    (dict(fps=10.0, time_codes_per_second=math.inf), "time_codes_per_second"),
-    (dict(fps=10.0, route_start=[0.0, 0.0]), "route_start"),
-    (dict(fps=10.0, route=[[0.0, 0.0], [1.0, 2.0]], route_start=[0.0, math.nan]), "route_start"),
-    (dict(fps=10.0, ocean_resolution=1), "ocean_resolution"),
-    (dict(fps=10.0, ocean_extent=(0.0, -5.0, 0.0, 10.0)), "ocean_extent"),
-    (dict(fps=10.0, boats=-2), "boats"),
-    (dict(fps=10.0, route=[1.0, 2.0]), "route"),
-    (dict(fps=10.0, route=[[0.0, 0.0], [1.0, 2.0]], route_labels="ABC"), "route_labels"),
-    (dict(fps=10.0, instanced="yes"), "instanced"),
-    (dict(fps=10.0, ascii=True), "ascii"),
-    (dict(fps=10.0, wind_direction=math.nan), "wind_direction"),
-    (dict(fps=10.0, ocean="sea"), "ocean"),
-    (dict(fps=10.0, ocean_loop=True, ocean=ow.Ocean(small_sea(), device="cpu")), "ocean_loop"),
+    (lambda: dict(fps=0.0), "StageRecorder.fps"),
+    (lambda: dict(fps=10.0, time_codes_per_second=0.0), "StageRecorder.time_codes_per_second"),
+    (lambda: dict(fps=10.0, time_codes_per_second=math.inf), "StageRecorder.time_codes_per_second"),
+    (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], start=[0.0, math.nan])),
+     r"RouteDrawing\.start"),
+    (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], start=[0.0, 1.0, 2.0, 3.0])),
+     r"RouteDrawing\.start"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), resolution=1)), r"OceanDrawing\.resolution"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), extent=(0.0, -5.0, 0.0, 10.0))), r"OceanDrawing\.extent"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), margin=-1.0)), r"OceanDrawing\.margin"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), normals=1)), r"OceanDrawing\.normals"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), colors="no")), r"OceanDrawing\.colors"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), loop=True)), r"OceanDrawing\.loop needs .*loop_period"),
+    (lambda: dict(fps=10.0, ocean=OceanDrawing("sea")), r"OceanDrawing\.ocean must be an Ocean"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(-2)), r"FleetDrawing\.count"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(2, instanced="yes")), r"FleetDrawing\.instanced"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(2, boat="V-C")), r"FleetDrawing\.boat"),
+    (lambda: dict(fps=10.0, route=RouteDrawing([1.0, 2.0])), r"RouteDrawing\.points"),
+    (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], labels="ABC")), r"RouteDrawing\.labels"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(2), ascii=True), "ascii"),
+    (lambda: dict(fps=10.0, wind=WindArrow(math.nan)), r"WindArrow\.direction"),
+    (lambda: dict(fps=10.0, wind=WindArrow(0.5, speed=-1.0)), r"WindArrow\.speed"),
+    (lambda: dict(fps=10.0, wind=WindArrow(0.5, origin=(0.0, 0.0))), r"WindArrow\.origin"),
+    (lambda: dict(fps=10.0, save_every=0), "StageRecorder.save_every"),
+    # A group of the wrong type: the parameter, and what to pass instead.
+    (lambda: dict(fps=10.0, ocean=_sea()), r"StageRecorder\.ocean must be an OceanDrawing or None .*"
+                                           r"ocean=OceanDrawing\(ocean\)\), got Ocean"),
+    (lambda: dict(fps=10.0, ocean="sea"), r"StageRecorder\.ocean must be an OceanDrawing"),
+    (lambda: dict(fps=10.0, fleet=2), r"StageRecorder\.fleet must be a FleetDrawing \(.*FleetDrawing\(count\)"),
+    (lambda: dict(fps=10.0, fleet=None), r"StageRecorder\.fleet must be a FleetDrawing"),
+    (lambda: dict(fps=10.0, route=[[0.0, 0.0], [1.0, 2.0]]),
+     r"StageRecorder\.route must be a RouteDrawing or None .*RouteDrawing\(points\)"),
+    (lambda: dict(fps=10.0, wind=0.5), r"StageRecorder\.wind must be a WindArrow or None .*WindArrow\(direction\)"),
+    (lambda: dict(fps=10.0, wind=OceanDrawing(_sea())), r"StageRecorder\.wind must be a WindArrow"),
 ])
 def test_bad_argument_is_refused_by_name(tmp_path, arguments, name):
+    # The groups check their fields when they are made: the arguments are built inside the check.
     with pytest.raises(ValueError, match=name):
-        StageRecorder(tmp_path / "run.usdc", **arguments)
+        StageRecorder(tmp_path / "run.usdc", **arguments())
     assert os.listdir(tmp_path) == []
+
+
+def test_for_eboat_fills_in_what_the_options_leave_out(tmp_path):
+    config = EBoatSimulatorConfig(ocean=small_sea(loop_period=4.0), wind=ow.WindConfig(speed=6.0, direction=1.0))
+    sim = EBoatSimulator(config, 2, device="cpu")
+    recorder = StageRecorder.for_eboat(tmp_path / "run.usdc", sim, fps=FPS)
+    assert recorder.ocean is sim.ocean and not recorder.ocean_loop and recorder.ocean_resolution == 64
+    assert recorder.boats == 2 and not recorder.instanced and recorder.route is None
+    direction, speed = recorder.wind
+    assert direction == pytest.approx(float(sim.state.wind_mean_direction.numpy()[0]))
+    assert speed == pytest.approx(float(sim.state.wind_mean_speed.numpy()[0]))
+    recorder.abort()
+    # Groups given win; None leaves a part out.
+    recorder = StageRecorder.for_eboat(tmp_path / "run.usdc", sim, fps=FPS, ocean=OceanDrawing(sim.ocean, loop=True),
+                                       fleet=FleetDrawing(2, instanced=True), wind=None)
+    assert recorder.ocean_loop and recorder.loop_path == str(tmp_path / "run_ocean_loop.usdc")
+    assert recorder.instanced and recorder.wind is None
+    recorder.abort()
+    recorder = StageRecorder.for_eboat(tmp_path / "run.usdc", sim, fps=FPS, ocean=None, wind=WindArrow(0.5))
+    assert recorder.ocean is None and recorder.wind == (0.5, 5.0) and recorder.boats == 2
+    recorder.abort()
+    assert os.listdir(tmp_path) == []
+
+
+def test_option_groups_are_frozen_and_normalised():
+    import dataclasses
+
+    route = RouteDrawing(np.array([[0, 0], [3, 4]]), labels="AB", start=np.array([1, 1]))
+    assert route == RouteDrawing([[0.0, 0.0], [3.0, 4.0]], labels=["A", "B"], start=(1.0, 1.0))
+    assert route.points == ((0.0, 0.0), (3.0, 4.0)) and route.labels == ("A", "B") and route.start == (1.0, 1.0)
+    assert hash(route) == hash(RouteDrawing([[0, 0], [3, 4]], labels="AB", start=[1, 1]))
+    wind = WindArrow(1, speed=2, origin=[0, 1, 8])
+    assert (wind.direction, wind.speed, wind.origin) == (1.0, 2.0, (0.0, 1.0, 8.0))
+    drawing = OceanDrawing(_sea(), extent=[0, 10, -5, 5], margin=3)
+    assert drawing.extent == (0.0, 10.0, -5.0, 5.0) and drawing.margin == 3.0 and drawing.resolution == 64
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        drawing.resolution = 8
+    assert FleetDrawing() == FleetDrawing(0, instanced=None, boat=None)
 
 
 def test_bad_frame_is_refused_by_name(tmp_path):
     with pytest.raises(ValueError, match="path must end in"):
         StageRecorder(tmp_path / "run.txt", fps=10.0)
-    with StageRecorder(tmp_path / "run.usdc", fps=10.0, boats=2) as recorder:
+    with StageRecorder(tmp_path / "run.usdc", fps=10.0, fleet=FleetDrawing(2)) as recorder:
         with pytest.raises(ValueError, match="positions must have shape"):
             recorder.record(0.0, np.zeros((3, 3)), [[0, 0, 0, 1]] * 2)
         with pytest.raises(ValueError, match="orientations"):
@@ -318,7 +385,8 @@ def test_bad_frame_is_refused_by_name(tmp_path):
 def test_preview_png_is_written(tmp_path):
     ocean = ow.Ocean(small_sea(), device="cpu")
     stage = tmp_path / "run.usdc"
-    with StageRecorder(stage, fps=10.0, ocean=ocean, boats=2, route=[[0, 0], [20, 10]], wind_direction=2.0) as rec:
+    with StageRecorder(stage, fps=10.0, ocean=OceanDrawing(ocean), fleet=FleetDrawing(2),
+                       route=RouteDrawing([[0, 0], [20, 10]]), wind=WindArrow(2.0)) as rec:
         rec.record(0.0, [[0, 0, 0], [8, 3, 0]], [[0, 0, 0, 1], [0, 0, 0.38268343, 0.92387953]], [0.5, -0.5])
     png = render_preview(stage)
     assert png == str(tmp_path / "run.png")
@@ -356,7 +424,7 @@ def test_route_path_starts_at_the_start_and_buoys_are_solid(tmp_path):
     from ocean_warp.envs.tasks.task_configs import BCDACA_ROUTE
 
     path = tmp_path / "route.usda"
-    with StageRecorder(path, fps=1.0, route=BCDACA_ROUTE, route_labels="BCDACA", route_start=(0.0, 0.0)):
+    with StageRecorder(path, fps=1.0, route=RouteDrawing(BCDACA_ROUTE, labels="BCDACA", start=(0.0, 0.0))):
         pass
     stage = Usd.Stage.Open(str(path))
     drawn = np.array(UsdGeom.BasisCurves.Get(stage, "/World/Route/Path").GetPointsAttr().Get())
@@ -379,7 +447,7 @@ def test_route_path_starts_at_the_start_and_buoys_are_solid(tmp_path):
         assert tuple(surface.GetInput("diffuseColor").Get()) == pytest.approx(_display_color(solids[0]))
     # A start away from every waypoint gets a buoy of its own, and the path leaves from it.
     path = tmp_path / "elsewhere.usda"
-    with StageRecorder(path, fps=1.0, route=[[10.0, 0.0], [20.0, 5.0]], route_start=(-5.0, -5.0)):
+    with StageRecorder(path, fps=1.0, route=RouteDrawing([[10.0, 0.0], [20.0, 5.0]], start=(-5.0, -5.0))):
         pass
     stage = Usd.Stage.Open(str(path))
     drawn = np.array(UsdGeom.BasisCurves.Get(stage, "/World/Route/Path").GetPointsAttr().Get())
@@ -394,8 +462,9 @@ def test_every_visible_part_has_a_preview_surface(tmp_path, instanced, colors):
 
     ocean = ow.Ocean(small_sea(), device="cpu")
     path = tmp_path / "looks.usda"
-    with StageRecorder(path, fps=2.0, ocean=ocean, ocean_resolution=8, ocean_colors=colors, boats=3,
-                       instanced=instanced, route=[[0.0, 0.0], [20.0, 5.0]], wind_direction=1.0) as recorder:
+    with StageRecorder(path, fps=2.0, ocean=OceanDrawing(ocean, resolution=8, colors=colors),
+                       fleet=FleetDrawing(3, instanced=instanced), route=RouteDrawing([[0.0, 0.0], [20.0, 5.0]]),
+                       wind=WindArrow(1.0)) as recorder:
         recorder.record(0.0, [[0, 0, 0], [5, 5, 0], [9, 0, 0]], [[0, 0, 0, 1]] * 3)
     assert validate_stage(path) == []
     stage = Usd.Stage.Open(str(path))
@@ -446,8 +515,8 @@ def test_stage_plays_in_real_time(tmp_path, rate):
     times = [0.25, 0.5, 0.75, 1.0, 1.25]
     positions = [np.array([[2.0 * t, -t, 0.0]]) for t in times]
     path = tmp_path / "rate.usdc"
-    with StageRecorder(path, fps=4.0, ocean=ocean, ocean_loop=True, ocean_resolution=8, boats=1, instanced=False,
-                       **options) as recorder:
+    with StageRecorder(path, fps=4.0, ocean=OceanDrawing(ocean, resolution=8, loop=True),
+                       fleet=FleetDrawing(1, instanced=False), **options) as recorder:
         for t, where in zip(times, positions):
             recorder.record(t, where, [[0, 0, 0, 1]])
     stage = Usd.Stage.Open(str(path))
@@ -475,8 +544,8 @@ def test_model_hierarchy_kinds(tmp_path, instanced):
     from pxr import Kind
 
     path = tmp_path / "kinds.usda"
-    with StageRecorder(path, fps=2.0, boats=2, instanced=instanced, route=[[0, 0], [5, 5]],
-                       wind_direction=0.0) as recorder:
+    with StageRecorder(path, fps=2.0, fleet=FleetDrawing(2, instanced=instanced), route=RouteDrawing([[0, 0], [5, 5]]),
+                       wind=WindArrow(0.0)) as recorder:
         recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
     stage = Usd.Stage.Open(str(path))
 
@@ -515,7 +584,7 @@ def test_camera_frames_route_and_boats_and_the_sun_shines_down(tmp_path):
     route = np.array([[0.0, 0.0], [60.0, -40.0], [120.0, 10.0]])
     boats = np.array([[-10.0, 5.0, 0.0], [130.0, 30.0, 0.0]])
     path = tmp_path / "view.usdc"
-    with StageRecorder(path, fps=1.0, boats=2, route=route) as recorder:
+    with StageRecorder(path, fps=1.0, fleet=FleetDrawing(2), route=RouteDrawing(route)) as recorder:
         recorder.record(0.0, boats, [[0, 0, 0, 1]] * 2)
         recorder.record(1.0, boats + [0.0, -60.0, 0.0], [[0, 0, 0, 1]] * 2)  # where the camera must reach too
     assert validate_stage(path) == []
@@ -539,7 +608,7 @@ def test_camera_frames_route_and_boats_and_the_sun_shines_down(tmp_path):
 def test_per_frame_ocean_has_its_first_frame_as_default(tmp_path):
     ocean = ow.Ocean(small_sea(), device="cpu")
     path = tmp_path / "frames.usdc"
-    with StageRecorder(path, fps=2.0, ocean=ocean, ocean_resolution=8, ocean_extent=(0.0, 10.0, 0.0, 10.0)) as rec:
+    with StageRecorder(path, fps=2.0, ocean=OceanDrawing(ocean, resolution=8, extent=(0.0, 10.0, 0.0, 10.0))) as rec:
         for k in range(3):
             rec.record(0.5 * (k + 1))
     stage = Usd.Stage.Open(str(path))
@@ -566,7 +635,7 @@ def test_export_usd_refuses_a_bad_out_before_making_anything(tmp_path, capsys, m
 def test_failed_recording_removes_the_folders_it_made(tmp_path):
     target = tmp_path / "made" / "for" / "it" / "run.usdc"
     with pytest.raises(RuntimeError, match="stop"):
-        with StageRecorder(target, fps=2.0, boats=1) as recorder:
+        with StageRecorder(target, fps=2.0, fleet=FleetDrawing(1)) as recorder:
             recorder.record(0.0, np.zeros((1, 3)), [[0, 0, 0, 1]])
             raise RuntimeError("stop")
     assert os.listdir(tmp_path) == []
@@ -585,7 +654,7 @@ def test_crate_saved_while_recording_is_written_afresh_at_the_end(tmp_path, rng)
 
     path = tmp_path / "long.usdc"
     positions = rng.normal(size=(60, 2, 3))
-    with StageRecorder(path, fps=2.0, boats=2, instanced=False, save_every=5) as recorder:
+    with StageRecorder(path, fps=2.0, fleet=FleetDrawing(2, instanced=False), save_every=5) as recorder:
         for k, where in enumerate(positions):
             recorder.record(0.5 * k, where, [[0, 0, 0, 1]] * 2, rng.normal(size=2), rng.normal(size=2))
     assert os.listdir(tmp_path) == ["long.usdc"]
