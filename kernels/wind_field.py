@@ -59,17 +59,30 @@ def wind_vector(speed: float, direction: float) -> wp.vec3:
     """The horizontal wind [m/s, world] of ``speed`` [m/s] blowing towards ``direction`` [rad]."""
     return wp.vec3(speed * wp.cos(direction), speed * wp.sin(direction), 0.0)
 
+@wp.struct
+class WindState:
+    """The wind over N environments: what moves (the gusts) and each environment's mean."""
+
+    mean_speed: wp.array(dtype=float)
+    """Mean speed per environment [m/s]."""
+    mean_direction: wp.array(dtype=float)
+    """Mean direction per environment, where the wind blows towards, from +x [rad]."""
+    gust_scale: wp.array(dtype=float)
+    """Factor on the config's gust standard deviations per environment (1: as configured)."""
+    speed: wp.array(dtype=float)
+    """Current speed with gusts [m/s]."""
+    direction: wp.array(dtype=float)
+    """Current direction with gusts [rad]."""
+    velocity: wp.array(dtype=wp.vec3)
+    """Wind vector at the reference height, world frame [m/s]."""
+
+
 
 @wp.kernel(enable_backward=False)
 def update_wind(
     gusts: GustModel,
     counter: wp.array(dtype=int),
-    mean_speed: wp.array(dtype=float),
-    mean_direction: wp.array(dtype=float),
-    gust_scale: wp.array(dtype=float),
-    speed: wp.array(dtype=float),
-    direction: wp.array(dtype=float),
-    velocity: wp.array(dtype=wp.vec3),
+    wind: WindState,
 ):
     """One substep of the gust processes per environment, their standard deviations scaled by the
     environment's ``gust_scale`` (1: the config's); ``velocity`` gets the wind vector at the
@@ -77,16 +90,16 @@ def update_wind(
     caller advances it. A NaN mean stays NaN (``wp.max`` would hide it), for the rig to report."""
     env = wp.tid()
     state = stream_state(gusts.seed, WIND_GUSTS, counter[0], gusts.first_index + env)
-    scale = gust_scale[env]
-    new_speed = mean_speed[env] + (speed[env] - mean_speed[env]) * gusts.speed_decay
+    scale = wind.gust_scale[env]
+    new_speed = wind.mean_speed[env] + (wind.speed[env] - wind.mean_speed[env]) * gusts.speed_decay
     new_speed += scale * gusts.speed_noise * wp.randn(state)
     if new_speed < 0.0:
         new_speed = 0.0
-    new_direction = mean_direction[env] + (direction[env] - mean_direction[env]) * gusts.direction_decay
+    new_direction = wind.mean_direction[env] + (wind.direction[env] - wind.mean_direction[env]) * gusts.direction_decay
     new_direction += scale * gusts.direction_noise * wp.randn(state)
-    speed[env] = new_speed
-    direction[env] = new_direction
-    velocity[env] = wind_vector(new_speed, new_direction)
+    wind.speed[env] = new_speed
+    wind.direction[env] = new_direction
+    wind.velocity[env] = wind_vector(new_speed, new_direction)
 
 
 @wp.kernel(enable_backward=False)
@@ -95,21 +108,16 @@ def reset_wind(
     new_mean_speed: wp.array(dtype=float),
     new_mean_direction: wp.array(dtype=float),
     new_gust_scale: wp.array(dtype=float),
-    mean_speed: wp.array(dtype=float),
-    mean_direction: wp.array(dtype=float),
-    gust_scale: wp.array(dtype=float),
-    speed: wp.array(dtype=float),
-    direction: wp.array(dtype=float),
-    velocity: wp.array(dtype=wp.vec3),
+    wind: WindState,
 ):
     """Every environment whose ``mask`` is non-zero gets its row of the new mean wind [m/s, rad] and
     gust scale, and its gusts restart from that mean."""
     env = wp.tid()
     if mask[env] == 0:
         return
-    mean_speed[env] = new_mean_speed[env]
-    mean_direction[env] = new_mean_direction[env]
-    gust_scale[env] = new_gust_scale[env]
-    speed[env] = new_mean_speed[env]
-    direction[env] = new_mean_direction[env]
-    velocity[env] = wind_vector(new_mean_speed[env], new_mean_direction[env])
+    wind.mean_speed[env] = new_mean_speed[env]
+    wind.mean_direction[env] = new_mean_direction[env]
+    wind.gust_scale[env] = new_gust_scale[env]
+    wind.speed[env] = new_mean_speed[env]
+    wind.direction[env] = new_mean_direction[env]
+    wind.velocity[env] = wind_vector(new_mean_speed[env], new_mean_direction[env])

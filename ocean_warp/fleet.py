@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from typing import NamedTuple
 
@@ -26,11 +27,11 @@ from .kernels.spatial import vec6
 from .torch_streams import ordered_with_torch
 from .validation import require_indices, require_rows
 
-__all__ = ["Fleet", "FleetTensors", "BoatStatus"]
+__all__ = ["Fleet", "FleetModel", "FleetState", "FleetControl", "FleetForces", "FleetTensors", "BoatStatus"]
 
 
 class BoatStatus:
-    """Bits of ``Fleet.status``; a boat is healthy when its status is 0. Flags stay until a reset."""
+    """Bits of ``Fleet.state.status``; a boat is healthy when its status is 0. Flags stay until a reset."""
 
     NONFINITE = int(STATUS_NONFINITE)
     """Its state turned NaN or infinite; it is frozen at its last finite state."""
@@ -64,8 +65,70 @@ class FleetTensors(NamedTuple):
     """(N, 6) water's force [N] and moment about the origin [N m], body frame (output)."""
 
 
+@dataclasses.dataclass(frozen=True)
+class FleetModel:
+    """What describes the boats, fixed for the fleet's life (Warp arrays and structs on its device)."""
+
+    boat_types: list[BoatType]
+    """The fleet's boat types."""
+    hull_type: wp.array
+    """(N,) int: each boat's index into ``boat_types``."""
+    meshes: HullMeshes
+    """The boat types' physics meshes, resistance tables and face data, as the hull pass reads them."""
+    body: BodyParameters
+    """The boat types' mass, inertia, added mass and damping, as the integrator reads them."""
+    triangle_offset: wp.array
+    """(N,) int: each boat's first row in per-triangle arrays (``FleetState.swept_rate``)."""
+    total_triangles: int
+    """Hull triangles of all boats together."""
+    max_vertex_count: int
+    """Vertices of the largest hull (the hull pass's rounds per block)."""
+    max_triangle_count: int
+    """Triangles of the largest hull."""
+
+
+@dataclasses.dataclass(frozen=True)
+class FleetState:
+    """What moves, N boats (Warp arrays)."""
+
+    position: wp.array
+    """(N,) vec3: body origin in the world frame [m]."""
+    orientation: wp.array
+    """(N,) quat: body -> world (x, y, z, w)."""
+    velocity: wp.array
+    """(N,) vec6: Fossen's nu = (u, v, w, p, q, r), body frame [m/s, rad/s]."""
+    status: wp.array
+    """(N,) int: :class:`BoatStatus` bits."""
+    water_velocity: wp.array
+    """(N,) vec3: the water's orbital velocity at each boat's origin, body frame [m/s] (computed)."""
+    swept_rate: wp.array
+    """(total triangles,) float: each hull triangle's last swept rate A_sub |v| for slamming [m^3/s]."""
+
+
+@dataclasses.dataclass(frozen=True)
+class FleetControl:
+    """What is commanded from outside the simulator's force models, N boats (Warp arrays)."""
+
+    wrench_world: wp.array
+    """(N,) vec6: external force at the centre of mass [N] and couple [N m], world frame."""
+    wrench_body: wp.array
+    """(N,) vec6: the same in the body frame."""
+
+
+@dataclasses.dataclass(frozen=True)
+class FleetForces:
+    """What a substep computes before it integrates, N boats (Warp arrays, body frame, about the origin)."""
+
+    hydro_wrench: wp.array
+    """(N,) vec6: the water's force [N] and moment [N m] from the hull pass."""
+    model_wrench: wp.array
+    """(N,) vec6: the sum of the simulator's force models (foils, propellers, ...), zeroed every substep."""
+
+
 class Fleet:
-    """N boats of one or a few :class:`BoatType`, their state on one device.
+    """N boats of one or a few :class:`BoatType` on one device: their ``model`` (:class:`FleetModel`, what
+    describes them), ``state`` (:class:`FleetState`, what moves), ``control`` (:class:`FleetControl`, the
+    external wrenches) and ``forces`` (:class:`FleetForces`, computed every substep).
 
     ``Fleet(boat_type, 4096)`` gives 4096 boats of one type; ``Fleet([a, b], types=[0, 1, 1, 0])``
     mixes types. All boats start at the origin, upright and at rest: place them with :meth:`reset`.
@@ -73,54 +136,48 @@ class Fleet:
 
     def __init__(self, boat_types: BoatType | Sequence[BoatType], count: int | None = None, *,
                  types: Sequence[int] | None = None, device=None):
-        self.boat_types = [boat_types] if isinstance(boat_types, BoatType) else list(boat_types)
-        if not self.boat_types or not all(isinstance(t, BoatType) for t in self.boat_types):
+        boat_types = [boat_types] if isinstance(boat_types, BoatType) else list(boat_types)
+        if not boat_types or not all(isinstance(t, BoatType) for t in boat_types):
             raise ValueError("Fleet: boat_types must be a BoatType or a non-empty sequence of them")
-        type_of_boat = _type_of_boat(len(self.boat_types), count, types)
+        type_of_boat = _type_of_boat(len(boat_types), count, types)
         self.device = wp.get_device(device)
         self.count = len(type_of_boat)
         device = self.device
 
-        vertex_counts = np.array([t.hull.vertex_count for t in self.boat_types], dtype=np.int64)
-        triangle_counts = np.array([t.hull.triangle_count for t in self.boat_types], dtype=np.int64)
-        self.max_vertex_count = int(vertex_counts.max())
-        if self.max_vertex_count > MAX_HULL_VERTICES:
-            raise ValueError(f"Fleet: a hull has {self.max_vertex_count} vertices; the hull-force pass holds at most "
+        vertex_counts = np.array([t.hull.vertex_count for t in boat_types], dtype=np.int64)
+        triangle_counts = np.array([t.hull.triangle_count for t in boat_types], dtype=np.int64)
+        max_vertex_count = int(vertex_counts.max())
+        if max_vertex_count > MAX_HULL_VERTICES:
+            raise ValueError(f"Fleet: a hull has {max_vertex_count} vertices; the hull-force pass holds at most "
                              f"{MAX_HULL_VERTICES} per boat in fast memory. Use a coarser physics mesh (Hull(..., "
                              "visual=fine_mesh) keeps the fine one for viewers)")
-        self.max_triangle_count = int(triangle_counts.max())
         boat_triangles = triangle_counts[type_of_boat]
         if boat_triangles.sum() >= 2**31:
             raise ValueError(f"Fleet: {self.count} boats hold more than 2^31 triangles")
-
-        self.hull_type = wp.array(type_of_boat.astype(np.int32), dtype=int, device=device)
-        self.triangle_offset = wp.array(_exclusive_sum(boat_triangles), dtype=int, device=device)
-        self.total_triangles = int(boat_triangles.sum())
+        total_triangles = int(boat_triangles.sum())
+        self.model = FleetModel(
+            boat_types=boat_types, hull_type=wp.array(type_of_boat.astype(np.int32), dtype=int, device=device),
+            meshes=_hull_meshes(boat_types, device), body=_body_parameters(boat_types, device),
+            triangle_offset=wp.array(_exclusive_sum(boat_triangles), dtype=int, device=device),
+            total_triangles=total_triangles, max_vertex_count=max_vertex_count,
+            max_triangle_count=int(triangle_counts.max()))
+        """What describes the boats (see :class:`FleetModel`)."""
 
         n = self.count
-        self.position = wp.zeros(n, dtype=wp.vec3, device=device)
-        """(N,) body origin in the world frame [m]."""
-        self.orientation = wp.array(np.tile([0.0, 0.0, 0.0, 1.0], (n, 1)).astype(np.float32), dtype=wp.quat, device=device)
-        """(N,) body -> world quaternion (x, y, z, w)."""
-        self.velocity = wp.zeros(n, dtype=vec6, device=device)
-        """(N,) Fossen's nu = (u, v, w, p, q, r), body frame [m/s, rad/s]."""
-        self.status = wp.zeros(n, dtype=int, device=device)
-        """(N,) :class:`BoatStatus` bits."""
-        self.wrench_world = wp.zeros(n, dtype=vec6, device=device)
-        """(N,) external force at the centre of mass [N] and couple [N m], world frame."""
-        self.wrench_body = wp.zeros(n, dtype=vec6, device=device)
-        """(N,) external force at the centre of mass [N] and couple [N m], body frame."""
-        self.hydro_wrench = wp.zeros(n, dtype=vec6, device=device)
-        """(N,) the water's force [N] and moment about the origin [N m], body frame (computed)."""
-        self.model_wrench = wp.zeros(n, dtype=vec6, device=device)
-        """(N,) sum of the simulator's force models (foils, propellers, ...), body frame, about the origin."""
-        self.water_velocity = wp.zeros(n, dtype=wp.vec3, device=device)
-        """(N,) orbital velocity of the water at each boat's origin, body frame [m/s] (computed)."""
-        self.swept_rate = wp.full(max(self.total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device)
-        """Per boat and hull triangle: last swept rate A_sub |v| for slamming [m^3/s]."""
-
-        self.meshes = _hull_meshes(self.boat_types, device)
-        self.body = _body_parameters(self.boat_types, device)
+        upright = np.tile([0.0, 0.0, 0.0, 1.0], (n, 1)).astype(np.float32)
+        self.state = FleetState(
+            position=wp.zeros(n, dtype=wp.vec3, device=device),
+            orientation=wp.array(upright, dtype=wp.quat, device=device),
+            velocity=wp.zeros(n, dtype=vec6, device=device), status=wp.zeros(n, dtype=int, device=device),
+            water_velocity=wp.zeros(n, dtype=wp.vec3, device=device),
+            swept_rate=wp.full(max(total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device))
+        """What moves (see :class:`FleetState`)."""
+        self.control = FleetControl(wrench_world=wp.zeros(n, dtype=vec6, device=device),
+                                    wrench_body=wp.zeros(n, dtype=vec6, device=device))
+        """The external wrenches (see :class:`FleetControl`)."""
+        self.forces = FleetForces(hydro_wrench=wp.zeros(n, dtype=vec6, device=device),
+                                  model_wrench=wp.zeros(n, dtype=vec6, device=device))
+        """What each substep computes (see :class:`FleetForces`)."""
         self._tensors = None
 
     # --- torch --------------------------------------------------------------------------------------
@@ -129,8 +186,8 @@ class Fleet:
         """torch views of the state and wrench arrays, bound once; no copies."""
         if self._tensors is None:
             self._tensors = FleetTensors(*(wp.to_torch(a) for a in (
-                self.position, self.orientation, self.velocity, self.status, self.wrench_world,
-                self.wrench_body, self.hydro_wrench)))
+                self.state.position, self.state.orientation, self.state.velocity, self.state.status,
+                self.control.wrench_world, self.control.wrench_body, self.forces.hydro_wrench)))
         return self._tensors
 
     # --- resets -------------------------------------------------------------------------------------
@@ -175,19 +232,23 @@ class Fleet:
         device = self.device
         wp.launch(reset_boats_masked, dim=self.count, device=device,
                   inputs=[mask, position, orientation, velocity],
-                  outputs=[self.position, self.orientation, self.velocity, self.status, self.wrench_world,
-                           self.wrench_body, self.water_velocity])
-        wp.launch(reset_swept_rates_masked, dim=(self.count, self.max_triangle_count), device=device,
-                  inputs=[mask, self.hull_type, self.meshes.triangle_count, self.triangle_offset, float(NO_SWEPT_RATE)],
-                  outputs=[self.swept_rate])
+                  outputs=[self.state.position, self.state.orientation, self.state.velocity, self.state.status,
+                           self.control.wrench_world, self.control.wrench_body, self.state.water_velocity])
+        model = self.model
+        wp.launch(reset_swept_rates_masked, dim=(self.count, model.max_triangle_count), device=device,
+                  inputs=[mask, model.hull_type, model.meshes.triangle_count, model.triangle_offset,
+                          float(NO_SWEPT_RATE)],
+                  outputs=[self.state.swept_rate])
 
     # --- host copies, for inspection and tests --------------------------------------------------------
     def numpy(self) -> dict[str, np.ndarray]:
         """Host copies of position, orientation, velocity, status and hydro_wrench (after torch's
         pending writes to them). Copies even on the CPU, where ``wp.array.numpy()`` is a view."""
         with ordered_with_torch(self.device):
-            return {name: getattr(self, name).numpy().copy() for name in
-                    ("position", "orientation", "velocity", "status", "hydro_wrench")}
+            arrays = {"position": self.state.position, "orientation": self.state.orientation,
+                      "velocity": self.state.velocity, "status": self.state.status,
+                      "hydro_wrench": self.forces.hydro_wrench}
+            return {name: array.numpy().copy() for name, array in arrays.items()}
 
 
 def _type_of_boat(type_count: int, count, types) -> np.ndarray:

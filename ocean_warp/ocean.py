@@ -89,7 +89,8 @@ class Ocean:
         self._cells = wp.array(cells_x_major, dtype=spectrum_cell, device=self.device)
         self._amplitude_scale = 1.0
         self.time = wp.zeros(1, dtype=wp.float64, device=self.device)
-        """(1,) float64 time [s] of the fields; kernels may advance it inside a captured graph."""
+        """(1,) float64 time [s] of a standalone ocean's fields (``update(t)`` sets it; kernels may advance it
+        inside a captured graph). A :class:`~ocean_warp.Simulator` evaluates its ocean at its own clock."""
         # Pass 1 writes packed_spectra (n, n); pass 2 reads the same bytes as vec4f (n, 2 n).
         self._spectra_quads = wp.zeros((n, 2 * n), dtype=wp.vec4f, device=self.device)
         self._spectra = wp.array(ptr=self._spectra_quads.ptr, dtype=packed_spectra, shape=(n, n), device=self.device)
@@ -114,11 +115,11 @@ class Ocean:
         self.update(0.0)
 
     # --- evaluation -----------------------------------------------------------------------------
-    def update(self, t: float | None = None, *, out: wp.array | None = None) -> None:
-        """Evaluate all fields at time ``t`` [s] (None: at the time held in :attr:`time`). With
-        ``config.loop_period`` the fields repeat exactly: t is taken modulo the loop period. ``out``: a
-        (FIELD_COUNT * n, n) vec2f array to write the fields into instead of this ocean's own (the
-        evaluating side of :meth:`read_fields_from`).
+    def update(self, t: float | None = None, *, out: wp.array | None = None, clock: wp.array | None = None) -> None:
+        """Evaluate all fields at time ``t`` [s] (None: at the time held in ``clock``, a (1,) float64 array
+        [s] such as a simulator's, else in :attr:`time`). With ``config.loop_period`` the fields repeat
+        exactly: t is taken modulo the loop period. ``out``: a (FIELD_COUNT * n, n) vec2f array to write
+        the fields into instead of this ocean's own (the evaluating side of :meth:`read_fields_from`).
 
         An ocean that reads its fields from slots (:meth:`read_fields_from`) copies the next slot instead.
 
@@ -137,9 +138,11 @@ class Ocean:
             if isinstance(t, bool) or not isinstance(t, (int, float, np.floating, np.integer)) or not math.isfinite(t):
                 raise ValueError(f"Ocean.update: t must be a finite time in seconds, got {t!r}")
             self.time.fill_(float(t))
+            clock = None
         n = self.config.resolution
         block_dim = self.fft_plan.block_dim
-        wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time, self._loop_period],
+        wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time if clock is None else clock,
+                                                         self._loop_period],
                         outputs=[self._spectra], block_dim=block_dim, device=self.device)
         if out is None:
             out = self._field_rows

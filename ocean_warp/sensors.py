@@ -147,7 +147,7 @@ class Sensors:
         c = self.config
         bias_std = vec6(*([c.accelerometer_bias_std] * 3 + [c.gyroscope_bias_std] * 3))
         wp.launch(reset_sensors, dim=self.count, device=self.device,
-                  inputs=[mask, bias_std, self._model, self._counter, fleet.orientation, fleet.velocity,
+                  inputs=[mask, bias_std, self._model, self._counter, fleet.state.orientation, fleet.state.velocity,
                           self.noise_scale if noise_scale is None else noise_scale],
                   outputs=[self.imu_bias, self._previous_velocity, self.noise_scale])
         self._read(mask, True, SENSOR_RESET_NOISE, fleet)
@@ -155,6 +155,6 @@ class Sensors:
     def _read(self, mask: wp.array, refresh_all: bool, stream: int, fleet) -> None:
         wp.launch(read_sensors, dim=self.count, device=self.device,
                   inputs=[mask, int(refresh_all), stream, self._model, self.wind.gusts, self._counter,
-                          fleet.position, fleet.orientation, fleet.velocity, fleet.water_velocity,
-                          self.wind.velocity, self.imu_bias, self.noise_scale],
+                          fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.water_velocity,
+                          self.wind.state.velocity, self.imu_bias, self.noise_scale],
                   outputs=[self._previous_velocity, self.truth, self.readings])

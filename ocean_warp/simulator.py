@@ -75,7 +75,7 @@ class Simulator:
     read on the device.
 
     ``models`` are objects with ``substep(simulator)``, which launches kernels that add body-frame
-    wrenches about the origin to ``fleet.model_wrench`` (zeroed before them every substep), and
+    wrenches about the origin to ``fleet.forces.model_wrench`` (zeroed before them every substep), and
     optionally ``step(simulator)``, run once per step after the substeps. They launch in list order.
     """
 
@@ -92,8 +92,11 @@ class Simulator:
         self.ocean = ocean
         self.fleet = fleet
         self.device = fleet.device
+        self.clock = wp.clone(ocean.time)
+        """(1,) float64 simulated time [s], the simulation's state beside the fleet's (starts at the ocean's
+        time); every substep evaluates the ocean at it and advances it on the device."""
         self.block_dim = self.config.block_dim or (128 if self.device.is_cuda else 1)
-        vertex_rounds = -(-fleet.max_vertex_count // self.block_dim)
+        vertex_rounds = -(-fleet.model.max_vertex_count // self.block_dim)
         self._hull_wrenches = hull_wrenches_kernel(vertex_rounds, self.block_dim)
         self.water = _water_model(hydro, self.config.substep_dt)
         self.bounds = SafetyBounds()
@@ -109,45 +112,45 @@ class Simulator:
     @property
     def time(self) -> float:
         """Simulated time [s] (reads the device; do not call inside a capture)."""
-        return float(self.ocean.time.numpy()[0])
+        return float(self.clock.numpy()[0])
 
     def compute_hull_wrenches(self) -> None:
         """Sample the ocean at every hull vertex and sum the water's wrench on each boat into
-        ``fleet.hydro_wrench``, for the fleet's current state and the ocean's current fields."""
+        ``fleet.forces.hydro_wrench``, for the fleet's current state and the ocean's current fields."""
         fleet = self.fleet
         wp.launch_tiled(self._hull_wrenches, dim=[fleet.count], block_dim=self.block_dim, device=self.device,
-                        inputs=[self.ocean.surface, fleet.meshes, self.water, fleet.hull_type, fleet.triangle_offset,
-                                fleet.position, fleet.orientation, fleet.velocity, fleet.swept_rate],
-                        outputs=[fleet.water_velocity, fleet.hydro_wrench])
+                        inputs=[self.ocean.surface, fleet.model.meshes, self.water, fleet.model.hull_type, fleet.model.triangle_offset,
+                                fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.swept_rate],
+                        outputs=[fleet.state.water_velocity, fleet.forces.hydro_wrench])
 
     def integrate(self) -> None:
         """One substep of the rigid bodies with the wrenches computed last."""
         fleet = self.fleet
         wp.launch(integrate_boats, dim=fleet.count, device=self.device,
-                  inputs=[fleet.body, fleet.hull_type, self.config.hydrodynamics.gravity, self.config.substep_dt,
-                          self.bounds, fleet.hydro_wrench, fleet.model_wrench, fleet.wrench_world, fleet.wrench_body,
-                          fleet.water_velocity],
-                  outputs=[fleet.position, fleet.orientation, fleet.velocity, fleet.status])
+                  inputs=[fleet.model.body, fleet.model.hull_type, self.config.hydrodynamics.gravity, self.config.substep_dt,
+                          self.bounds, fleet.forces.hydro_wrench, fleet.forces.model_wrench, fleet.control.wrench_world, fleet.control.wrench_body,
+                          fleet.state.water_velocity],
+                  outputs=[fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.status])
 
     def substep(self, *, update_ocean: bool = True) -> None:
         """Ocean (optionally), water forces, force models, integration, time += dt / substeps."""
         if update_ocean:
-            self.ocean.update()
+            self.ocean.update(clock=self.clock)
         if self.config.hull_pressure:
             self.compute_hull_wrenches()
         else:
             self._sample_origin_water()
-        self.fleet.model_wrench.zero_()
+        self.fleet.forces.model_wrench.zero_()
         for model in self.models:
             model.substep(self)
         self.integrate()
-        launch_clock_advance(self.ocean.time, self.config.substep_dt, self.device)
+        launch_clock_advance(self.clock, self.config.substep_dt, self.device)
 
     def _sample_origin_water(self) -> None:
         """Without the hull pass, still sample the water velocity at each boat's origin."""
         fleet = self.fleet
         wp.launch(sample_origin_water, dim=fleet.count, device=self.device,
-                  inputs=[self.ocean.surface, fleet.position, fleet.orientation], outputs=[fleet.water_velocity])
+                  inputs=[self.ocean.surface, fleet.state.position, fleet.state.orientation], outputs=[fleet.state.water_velocity])
 
     def launch_step(self) -> None:
         """Launch one step's kernels without capturing them, e.g. inside a larger capture of the caller's

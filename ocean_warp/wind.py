@@ -9,7 +9,8 @@ import numpy as np
 import warp as wp
 
 from .kernels.random_streams import advance_counter
-from .kernels.wind_field import GustModel, reset_wind, update_wind
+from .device_structs import struct_from
+from .kernels.wind_field import GustModel, WindState, reset_wind, update_wind
 from .masks import mask_of, rows_at
 from .torch_streams import ordered_with_torch
 from .validation import (
@@ -80,8 +81,9 @@ class WindConfig:
 
 
 class Wind:
-    """Device arrays of the wind over ``count`` environments and the model that updates them every
-    substep (pass it among a Simulator's models, before the models that read it)."""
+    """The wind over ``count`` environments: its model (``config``, ``gusts``: the kernels' view of it), its
+    ``state`` (a ``WindState`` of device arrays) and the force-model hook that updates it every substep
+    (pass it among a Simulator's models, before the models that read it)."""
 
     def __init__(self, config: WindConfig | None = None, count: int = 1, *, substep: float, device=None,
                  first_index: int = 0):
@@ -91,28 +93,21 @@ class Wind:
         self.device = wp.get_device(device)
         self.count = int(count)
         full = lambda value: wp.full(self.count, value, dtype=float, device=self.device)  # noqa: E731
-        self.mean_speed = full(self.config.speed)
-        """(N,) mean speed per environment [m/s]."""
-        self.mean_direction = full(self.config.direction)
-        """(N,) mean direction per environment [rad]."""
-        self.gust_scale = full(1.0)
-        """(N,) factor on the config's gust standard deviations per environment (1: as configured)."""
-        self.speed = full(self.config.speed)
-        """(N,) current speed with gusts [m/s]."""
-        self.direction = full(self.config.direction)
-        """(N,) current direction with gusts [rad]."""
         initial = np.tile([self.config.speed * math.cos(self.config.direction),
                            self.config.speed * math.sin(self.config.direction), 0.0], (self.count, 1))
-        self.velocity = wp.array(initial.astype(np.float32), dtype=wp.vec3, device=self.device)
-        """(N,) wind vector at the reference height, world frame [m/s]."""
+        self.state = struct_from(WindState, mean_speed=full(self.config.speed),
+                                 mean_direction=full(self.config.direction), gust_scale=full(1.0),
+                                 speed=full(self.config.speed), direction=full(self.config.direction),
+                                 velocity=wp.array(initial.astype(np.float32), dtype=wp.vec3, device=self.device))
+        """What moves: every environment's mean wind, gust scale and current wind (see ``WindState`` in
+        ``ocean_warp.kernels.wind_field``: names, units)."""
         self._counter = wp.zeros(1, dtype=int, device=self.device)
         self.gusts = self.config.gust_model(require_positive("Wind", "substep", substep, unit=" [s]"),
                                             require_int_in_range("Wind", "first_index", first_index, 0, 2**30))
 
     def substep(self, simulator) -> None:
         wp.launch(update_wind, dim=self.count, device=self.device,
-                  inputs=[self.gusts, self._counter, self.mean_speed, self.mean_direction, self.gust_scale],
-                  outputs=[self.speed, self.direction, self.velocity])
+                  inputs=[self.gusts, self._counter], outputs=[self.state])
         wp.launch(advance_counter, dim=1, inputs=[self._counter], device=self.device)
 
     def restart_stream(self) -> None:
@@ -142,5 +137,4 @@ class Wind:
         """Device path of :meth:`set`: environments whose ``mask`` (N,) int32 is non-zero take their row of
         ``speed`` (N,) [m/s], ``direction`` (N,) [rad] and ``gust_scale`` (N,); launches only (graph-safe)."""
         wp.launch(reset_wind, dim=self.count, device=self.device, inputs=[mask, speed, direction, gust_scale],
-                  outputs=[self.mean_speed, self.mean_direction, self.gust_scale, self.speed, self.direction,
-                           self.velocity])
+                  outputs=[self.state])

@@ -97,7 +97,7 @@ def benchmark(device, boats: int, hull: ow.Hull, torch_limit: int, choppiness: f
         fresh.compute_hull_wrenches()
         reference = TorchHullReference(fresh)
         reference.hull_wrenches()
-        warp_wrench = wp.to_torch(fresh.fleet.hydro_wrench).double()
+        warp_wrench = wp.to_torch(fresh.fleet.forces.hydro_wrench).double()
         row["relative_difference"] = float(torch.linalg.norm(reference.wrench.double() - warp_wrench)
                                            / torch.linalg.norm(warp_wrench))
         on_cuda = device.is_cuda

@@ -25,9 +25,9 @@ class TorchHullReference:
 
     def __init__(self, simulator, *, ocean_fields=None):
         fleet, hydro = simulator.fleet, simulator.config.hydrodynamics
-        if len(fleet.boat_types) != 1:
+        if len(fleet.model.boat_types) != 1:
             raise ValueError("the torch reference handles one hull type")
-        boat = fleet.boat_types[0]
+        boat = fleet.model.boat_types[0]
         device = torch.device("cuda" if fleet.device.is_cuda else "cpu")
         self.device, self.hydro, self.config = device, hydro, simulator.config
         as_tensor = lambda a, dtype=torch.float32: torch.as_tensor(a, dtype=dtype, device=device)  # noqa: E731

@@ -144,7 +144,7 @@ def _held(eboat: EBoat, positions, orientations, velocities, *, drag: bool) -> n
     simulator = ow.Simulator(ocean, fleet, ow.SimulatorConfig(hydrodynamics=water))
     fleet.reset(position=positions, orientation=orientations, velocity=velocities)
     simulator.compute_hull_wrenches()
-    return fleet.hydro_wrench.numpy().astype(np.float64)
+    return fleet.forces.hydro_wrench.numpy().astype(np.float64)
 
 
 def simulator_gm(eboat: EBoat, rest_height: float) -> float:

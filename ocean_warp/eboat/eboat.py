@@ -298,7 +298,7 @@ class EBoat:
             middle = 0.5 * (low + high)
             fleet.reset(position=[0.0, 0.0, middle])
             simulator.compute_hull_wrenches()
-            if fleet.hydro_wrench.numpy()[0, 2] < weight:
+            if fleet.forces.hydro_wrench.numpy()[0, 2] < weight:
                 high = middle
             else:
                 low = middle

@@ -53,11 +53,11 @@ class SailingRig:
     def substep(self, simulator) -> None:
         if self._around is None:  # the fleet's and the wind's arrays, bound once
             fleet = simulator.fleet
-            self._around = struct_from(RigSurroundings, fleet, wind_velocity=self.wind.velocity)
+            self._around = struct_from(RigSurroundings, fleet.state, wind_velocity=self.wind.state.velocity)
         wp.launch(sailing_rig, dim=self.count, device=self.device,
                   inputs=[self.parameters, self.tables, self.wind.gusts, simulator.config.substep_dt, self._around,
                           self.control, self.state],
-                  outputs=[simulator.fleet.model_wrench, simulator.fleet.status])
+                  outputs=[simulator.fleet.forces.model_wrench, simulator.fleet.state.status])
 
     def reset_masked(self, mask: wp.array, sheet: wp.array, foil_scale: wp.array | None = None) -> None:
         """Boats whose ``mask`` is non-zero: rudder and boom centred, propeller stopped, sheet (command and
@@ -77,8 +77,8 @@ class _PointBuoyancyModel:
     def substep(self, simulator) -> None:
         fleet = simulator.fleet
         wp.launch(point_buoyancy, dim=fleet.count, device=simulator.device,
-                  inputs=[self.parameters, simulator.ocean.surface, fleet.position, fleet.orientation],
-                  outputs=[fleet.model_wrench])
+                  inputs=[self.parameters, simulator.ocean.surface, fleet.state.position, fleet.state.orientation],
+                  outputs=[fleet.forces.model_wrench])
 
 
 def _fleet(eboat: EBoat, config: EBoatSimulatorConfig, count: int, device,
@@ -138,7 +138,7 @@ class EBoatSimulator:
         self.mass_scale = mass_scale
         """(N,) float64 numpy: each boat's factor on the E-Boat's mass and inertia about its centre of mass,
         fixed for the simulator's life: all 1 without ``config.mass_variation``, else boat i has
-        ``config.mass_factors()[(first_boat + i) % K]`` (its BoatType: ``fleet.boat_types[(first_boat + i) % K]``)."""
+        ``config.mass_factors()[(first_boat + i) % K]`` (its BoatType: ``fleet.model.boat_types[(first_boat + i) % K]``)."""
         self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device, first_index=self.first_boat)
         self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water_density, device=device)
         self.sensors = Sensors(config.sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
@@ -152,17 +152,17 @@ class EBoatSimulator:
 
         fleet, rig, wind, sensors = self.fleet, self.rig, self.wind, self.sensors
         self.state = EBoatState(
-            position=fleet.position, orientation=fleet.orientation, velocity=fleet.velocity, status=fleet.status,
-            water_velocity=fleet.water_velocity, rudder_angle=rig.state.rudder_angle,
+            position=fleet.state.position, orientation=fleet.state.orientation, velocity=fleet.state.velocity, status=fleet.state.status,
+            water_velocity=fleet.state.water_velocity, rudder_angle=rig.state.rudder_angle,
             sheet_limit=rig.state.sheet_limit, boom_angle=rig.state.boom_angle, boom_rate=rig.state.boom_rate,
-            wind_mean_speed=wind.mean_speed,
-            wind_mean_direction=wind.mean_direction, wind_speed=wind.speed, wind_direction=wind.direction,
-            wind_velocity=wind.velocity, gust_scale=wind.gust_scale, foil_scale=rig.state.foil_scale,
-            noise_scale=sensors.noise_scale, readings=sensors.readings, truth=sensors.truth, time=ocean.time)
+            wind_mean_speed=wind.state.mean_speed, wind_mean_direction=wind.state.mean_direction,
+            wind_speed=wind.state.speed, wind_direction=wind.state.direction, wind_velocity=wind.state.velocity,
+            gust_scale=wind.state.gust_scale, foil_scale=rig.state.foil_scale,
+            noise_scale=sensors.noise_scale, readings=sensors.readings, truth=sensors.truth, time=self.simulator.clock)
         """What moves (Warp arrays; see :class:`EBoatState` for units)."""
         self.control = EBoatControl(rudder=rig.control.rudder, sheet=rig.control.sheet,
-                                    propeller=rig.control.propeller, wrench_world=fleet.wrench_world,
-                                    wrench_body=fleet.wrench_body)
+                                    propeller=rig.control.propeller, wrench_world=fleet.control.wrench_world,
+                                    wrench_body=fleet.control.wrench_body)
         """What is commanded (Warp arrays; see :class:`EBoatControl`)."""
         self.start = EBoatStart.allocate(count, device)
         """Where :meth:`reset_masked` puts each boat (Warp arrays; see :class:`EBoatStart`)."""
@@ -197,9 +197,9 @@ class EBoatSimulator:
         positions = require_rows(owner, "position", position, k, 3)
         velocities = require_rows(owner, "velocity", np.zeros(6) if velocity is None else velocity, k, 6)
         with ordered_with_torch(self.device):
-            old_speed = self.wind.mean_speed.numpy()[indices]
-            old_direction = self.wind.mean_direction.numpy()[indices]
-            gust_scales = self.wind.gust_scale.numpy()[indices]
+            old_speed = self.wind.state.mean_speed.numpy()[indices]
+            old_direction = self.wind.state.mean_direction.numpy()[indices]
+            gust_scales = self.wind.state.gust_scale.numpy()[indices]
         speeds = old_speed if wind_speed is None else require_per_item(owner, "wind_speed", wind_speed, k)
         directions = old_direction if wind_direction is None else require_per_item(owner, "wind_direction",
                                                                                     wind_direction, k)
@@ -240,7 +240,7 @@ class EBoatSimulator:
     def rewind(self) -> None:
         """Set the simulated time (and so the waves) and the wind's and sensors' random streams back to
         their start, for a seeded restart of the whole batch; launches only."""
-        self.ocean.time.zero_()
+        self.simulator.clock.zero_()
         self.wind.restart_stream()
         self.sensors.restart_stream()
 

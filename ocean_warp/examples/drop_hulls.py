@@ -70,9 +70,9 @@ def run(out_dir: str, *, device=None, boats_per_shape: int = 8, seconds: float =
     times, heave, roll = np.arange(1, steps + 1) * config.dt, np.empty((steps, count)), np.empty((steps, count))
     for step in range(steps):
         simulator.step()
-        heave[step] = fleet.position.numpy()[:, 2]
-        roll[step] = roll_pitch_yaw(fleet.orientation.numpy())[:, 0]
-    status = fleet.status.numpy()
+        heave[step] = fleet.state.position.numpy()[:, 2]
+        roll[step] = roll_pitch_yaw(fleet.state.orientation.numpy())[:, 0]
+    status = fleet.state.status.numpy()
     names = [types[t].name for t in type_of_boat]
     png = os.path.join(out_dir, "hull_motions.png")
     table = os.path.join(out_dir, "hull_motions.csv")

@@ -38,9 +38,9 @@ def test_hull_wrenches_match_numpy_reference(device, rng, falloffs):
     fleet.reset(position=positions, orientation=orientations, velocity=velocities)
     simulator = ow.Simulator(ocean, fleet, ow.SimulatorConfig(hydrodynamics=hydro))
     simulator.compute_hull_wrenches()
-    wrenches = fleet.hydro_wrench.numpy()
+    wrenches = fleet.forces.hydro_wrench.numpy()
 
-    type_of_boat = fleet.hull_type.numpy()
+    type_of_boat = fleet.model.hull_type.numpy()
     submerged_boats = 0
     for boat in range(count):
         hull = hulls[type_of_boat[boat]]

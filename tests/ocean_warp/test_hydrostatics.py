@@ -23,7 +23,7 @@ def static_wrenches(device, boat_types, positions, orientations, *, type_of_boat
     config = ow.SimulatorConfig(hydrodynamics=ow.HydrodynamicsConfig().without_drag())
     simulator = ow.Simulator(calm_ocean(device), fleet, config)
     simulator.compute_hull_wrenches()
-    return fleet.hydro_wrench.numpy().astype(np.float64)
+    return fleet.forces.hydro_wrench.numpy().astype(np.float64)
 
 
 def random_box(rng):

@@ -91,7 +91,7 @@ def _held_force(sim: EBoatSimulator, height: float, velocity, roll: float = 0.0)
     orientation = quaternion_from_roll_pitch_yaw(np.array([[roll, 0.0, 0.0]]))
     sim.fleet.reset(position=[[0.0, 0.0, height]], orientation=orientation, velocity=[velocity])
     sim.simulator.compute_hull_wrenches()
-    return sim.fleet.hydro_wrench.numpy()[0].astype(np.float64)
+    return sim.fleet.forces.hydro_wrench.numpy()[0].astype(np.float64)
 
 
 def test_residuary_resistance_in_the_hull_pass(device, rng):
@@ -139,13 +139,13 @@ def test_box_friction_ahead_and_drag_across(device, rng, cross_flow_only):
     speed = rng.uniform(0.5, 2.0)
     fleet.reset(position=[[0.0, 0.0, height_origin]], velocity=[[speed, 0, 0, 0, 0, 0]])
     sim.compute_hull_wrenches()
-    ahead = fleet.hydro_wrench.numpy()[0, 0]
+    ahead = fleet.forces.hydro_wrench.numpy()[0, 0]
     friction = 0.5 * RHO * (1 + k) * ittc(speed * length / NU) * (length * beam + 2 * length * draft) * speed**2
     pressure = 0.0 if cross_flow_only else (300.0 + 100.0) * speed**2 * beam * draft
     assert ahead == pytest.approx(-(friction + pressure), rel=1e-3)
     fleet.reset(position=[[0.0, 0.0, height_origin]], velocity=[[0, speed, 0, 0, 0, 0]])
     sim.compute_hull_wrenches()
-    sideways = fleet.hydro_wrench.numpy()[0, 1]
+    sideways = fleet.forces.hydro_wrench.numpy()[0, 1]
     friction = 0.5 * RHO * (1 + k) * ittc(speed * length / NU) * (length * beam + 2 * beam * draft) * speed**2
     assert sideways == pytest.approx(-(friction + 400.0 * speed**2 * length * draft), rel=1e-3)
 
@@ -160,10 +160,10 @@ def _resistance(sim: EBoatSimulator, height: float, speed: float) -> float:
     sim.reset(position=[0.0, 0.0, height], velocity=[speed, 0, 0, 0, 0, 0])
     simulator = sim.simulator
     simulator.compute_hull_wrenches()
-    sim.fleet.model_wrench.zero_()
+    sim.fleet.forces.model_wrench.zero_()
     sim.rig.substep(simulator)
     air = 0.5 * AIR * (0.816 * sim.eboat.topsides.area_ahead + 0.03448 * 3.188) * speed**2
-    return -float(sim.fleet.hydro_wrench.numpy()[0, 0] + sim.fleet.model_wrench.numpy()[0, 0]) - air
+    return -float(sim.fleet.forces.hydro_wrench.numpy()[0, 0] + sim.fleet.forces.model_wrench.numpy()[0, 0]) - air
 
 
 def test_upright_resistance_near_the_vpp(device):

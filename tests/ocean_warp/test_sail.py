@@ -144,9 +144,9 @@ def test_physics_windage_blends_ahead_and_abeam(device, rng):
                          device=device)
     sim.reset(position=[0.0, 0.0, 0.0], heading=0.0, velocity=[0, 0, 0, 0, 0, 0], wind_speed=speed,
               wind_direction=towards, sheet=0.0)
-    sim.fleet.model_wrench.zero_()
+    sim.fleet.forces.model_wrench.zero_()
     sim.rig.substep(sim.simulator)
-    force = sim.fleet.model_wrench.numpy()[0, :2]
+    force = sim.fleet.forces.model_wrench.numpy()[0, :2]
     wind = speed * np.array([math.cos(towards), math.sin(towards)])
     d = wind / speed
     cl, cd = _from_tables((lift_table, drag_table), math.atan2(-d[1], -d[0]))  # from the boom (aft) to the flow

@@ -20,8 +20,8 @@ def gust_series(device, config, envs, steps, dt):
     speeds, directions = [], []
     for _ in range(steps):
         wind.substep(_Stub())
-        speeds.append(wind.speed.numpy().copy())  # on the CPU numpy() is a view: copy each step
-        directions.append(wind.direction.numpy().copy())
+        speeds.append(wind.state.speed.numpy().copy())  # on the CPU numpy() is a view: copy each step
+        directions.append(wind.state.direction.numpy().copy())
     return np.array(speeds), np.array(directions)
 
 

@@ -66,7 +66,7 @@ def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
     t.control.propeller[:] = int(rng.integers(-5, 6))
     flip_force = np.array([1, -1, 1, -1, 1, -1])
     sim.step()
-    wrench = sim.fleet.hydro_wrench.numpy() + sim.fleet.model_wrench.numpy()
+    wrench = sim.fleet.forces.hydro_wrench.numpy() + sim.fleet.forces.model_wrench.numpy()
     scale = np.abs(wrench[0]).max()
     np.testing.assert_allclose(wrench[1], wrench[0] * flip_force, atol=1e-4 * scale)
     # 4 s: on the physics profile a difference of rounding grows about 2x per 0.5 s in some states (rng seed
@@ -166,7 +166,7 @@ def test_original_tuning_scales_the_rudder_force(device):
         sim.state.rudder_angle.fill_(0.3)
         sim.control.rudder.fill_(0.3)
         sim.simulator.substep()  # one substep: no leeway yet, so the rudder is the only side force
-        forces.append(sim.fleet.model_wrench.numpy()[0, 1])
+        forces.append(sim.fleet.forces.model_wrench.numpy()[0, 1])
     assert forces[1] == pytest.approx(0.3 * forces[0], rel=0.05)
 
 

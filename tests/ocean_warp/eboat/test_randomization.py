@@ -28,9 +28,9 @@ def test_mass_variants_accelerate_as_their_mass(device, hydrostatics):
     factors = np.linspace(1.0 - variation, 1.0 + variation, k)
     np.testing.assert_allclose(sim.mass_scale, np.tile(factors, 2))
     base = sim.eboat.boat_type
-    assert len(sim.fleet.boat_types) == k
-    np.testing.assert_array_equal(sim.fleet.hull_type.numpy(), np.arange(2 * k) % k)
-    for factor, variant in zip(factors, sim.fleet.boat_types):
+    assert len(sim.fleet.model.boat_types) == k
+    np.testing.assert_array_equal(sim.fleet.model.hull_type.numpy(), np.arange(2 * k) % k)
+    for factor, variant in zip(factors, sim.fleet.model.boat_types):
         assert variant.mass == pytest.approx(factor * base.mass)
         np.testing.assert_allclose(variant.inertia, factor * base.inertia)
         np.testing.assert_array_equal(variant.center_of_mass, base.center_of_mass)
@@ -51,7 +51,7 @@ def test_mass_variants_accelerate_as_their_mass(device, hydrostatics):
     # Absolute: the rigid body's answer M^-1 f to the thrust at the propeller ...
     propeller = np.array(sim.rig.parameters.propeller_position)
     wrench = np.concatenate([[thrust, 0.0, 0.0], np.cross(propeller, [thrust, 0.0, 0.0])])
-    expected = np.array([np.linalg.solve(variant.mass_matrix, wrench)[0] for variant in sim.fleet.boat_types])
+    expected = np.array([np.linalg.solve(variant.mass_matrix, wrench)[0] for variant in sim.fleet.model.boat_types])
     np.testing.assert_allclose(surge, expected, rtol=0.02)
     # ... which is T / m but for the pitch the thrust below the centre of mass starts (about 6 %).
     np.testing.assert_allclose(surge, thrust / (factors * base.mass), rtol=0.1)
@@ -59,8 +59,8 @@ def test_mass_variants_accelerate_as_their_mass(device, hydrostatics):
 
 def test_no_mass_variation_builds_the_single_type_fleet_as_before(device):
     sim = EBoatSimulator(EBoatSimulatorConfig(mass_variants=7), 4, device=device)
-    assert sim.fleet.boat_types == [sim.eboat.boat_type]
-    np.testing.assert_array_equal(sim.fleet.hull_type.numpy(), 0)
+    assert sim.fleet.model.boat_types == [sim.eboat.boat_type]
+    np.testing.assert_array_equal(sim.fleet.model.hull_type.numpy(), 0)
     np.testing.assert_array_equal(sim.mass_scale, 1.0)
     assert EBoatSimulatorConfig(mass_variation=0.1, mass_variants=1).mass_factors().tolist() == [1.0]
 
@@ -93,9 +93,9 @@ def test_foil_factors_scale_each_foils_force_exactly(device):
     np.testing.assert_array_equal(sim.state.foil_scale.numpy(), scales)
     sim.tensors.control.rudder[:] = 0.3
     sim.tensors.control.propeller[:] = 2
-    sim.fleet.model_wrench.zero_()
+    sim.fleet.forces.model_wrench.zero_()
     sim.rig.substep(sim.simulator)
-    wrench = sim.fleet.model_wrench.numpy().astype(np.float64)
+    wrench = sim.fleet.forces.model_wrench.numpy().astype(np.float64)
     foils = wrench[1:] - wrench[0]
     for one, scaled in ((0, 1), (2, 3), (4, 5)):
         assert np.linalg.norm(foils[one][:3]) > 1.0  # a real force [N]
