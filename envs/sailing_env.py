@@ -280,7 +280,7 @@ class SailingEnv:
             return self.task.start_height
         if self.task.simulator.boat.hydrostatics is Hydrostatics.POINTS:
             return 0.0
-        return self.simulator.eboat.rest_height("cpu", self.task.simulator.hydrodynamics)
+        return self.simulator.eboat.rest_height("cpu", self.task.simulator.water)
 
 
 def _task_parameters(task: TaskConfig) -> TaskParameters:

@@ -35,6 +35,7 @@ from .hull import Hull, HullRepairWarning  # noqa: E402
 from .hydrodynamics_config import HydrodynamicsConfig  # noqa: E402
 from .ocean import FftPlan, Ocean, SurfaceSample  # noqa: E402
 from .ocean_config import OceanConfig, Spectrum  # noqa: E402
+from .water_config import WaterConfig  # noqa: E402
 from .simulator import Simulator, SimulatorConfig  # noqa: E402
 from .wave_grid import RegularWave  # noqa: E402
 from .wind import Wind, WindConfig  # noqa: E402
@@ -42,7 +43,7 @@ from .sensors import CHANNEL_NAMES, SensorConfig, Sensors  # noqa: E402
 from .eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
 
 __all__ = [
-    "Ocean", "OceanConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan",
+    "Ocean", "OceanConfig", "WaterConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan",
     "Hull", "HullRepairWarning", "BoatType", "HydrodynamicsConfig",
     "Fleet", "FleetTensors", "BoatStatus", "Simulator", "SimulatorConfig",
     "Wind", "WindConfig", "Sensors", "SensorConfig", "CHANNEL_NAMES", "EBoat", "EBoatConfig", "EBoatSimulator",

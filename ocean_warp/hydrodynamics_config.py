@@ -30,17 +30,13 @@ class HydrodynamicsConfig:
     ahead meets friction (times the form factor 1 + k) and, for a boat type that has one, the residuary
     resistance of ``ocean_warp.resistance``, not a bluff body's ram pressure.
 
+    The water itself (density, gravity, viscosity) is the ocean's (``OceanConfig.water``).
+
     v is the velocity of the piece's centroid relative to the water's orbital velocity there. The
     default drag coefficients amount to a ram pressure of about 1/2 rho v^2 (drag coefficient 1) at
     the reference speed; tune them per hull.
     """
 
-    water_density: float = 1025.0
-    """rho [kg/m^3]; sea water. (The E-Boat's Gazebo model used 997.)"""
-    gravity: float = 9.81
-    """g [m/s^2]."""
-    kinematic_viscosity: float = 1.19e-6
-    """nu [m^2/s], sea water at 15 C (ITTC)."""
     reference_speed: float = 1.0
     """v_r [m/s], the speed at which the drag coefficients below are the pressure."""
     pressure_drag_linear: float = 100.0
@@ -70,8 +66,7 @@ class HydrodynamicsConfig:
 
     def __post_init__(self):
         owner = "HydrodynamicsConfig"
-        for name, unit in (("water_density", " [kg/m^3]"), ("gravity", " [m/s^2]"),
-                           ("kinematic_viscosity", " [m^2/s]"), ("reference_speed", " [m/s]"),
+        for name, unit in (("reference_speed", " [m/s]"),
                            ("slamming_max_acceleration", " [m/s^2]")):
             object.__setattr__(self, name, require_positive(owner, name, getattr(self, name), unit=unit))
         for name in ("pressure_drag_linear", "pressure_drag_quadratic", "pressure_drag_falloff", "suction_linear",

@@ -187,7 +187,7 @@ class Ocean:
         if config.spectrum is Spectrum.REGULAR:
             return 0.0
         if config.spectrum is Spectrum.PIERSON_MOSKOWITZ and config.wind_speed is not None:
-            return spectra.pierson_moskowitz_wind_sea_state(config.wind_speed, config.gravity)[0]
+            return spectra.pierson_moskowitz_wind_sea_state(config.wind_speed, config.water.gravity)[0]
         return config.significant_wave_height
 
     def set_significant_wave_height(self, hs: float) -> None:

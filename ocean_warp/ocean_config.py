@@ -6,6 +6,7 @@ import dataclasses
 import enum
 import math
 
+from .water_config import WaterConfig
 from .validation import (
     require_choice,
     require_finite,
@@ -74,8 +75,8 @@ class OceanConfig:
     """Phase [rad] of the "regular" wave: h = a cos(k.x - omega t + phase)."""
     seed: int = 0
     """Seed of the random amplitudes and phases of the spectral seas: one seed, one sea."""
-    gravity: float = 9.81
-    """Gravitational acceleration [m/s^2]."""
+    water: WaterConfig = dataclasses.field(default_factory=WaterConfig)
+    """The water of this sea: density, gravity (the waves' dispersion) and viscosity (see ``WaterConfig``)."""
     inversion_iterations: int = 8
     """Most fixed-point iterations that undo the choppy displacement when sampling (0 to 32). Each shrinks
     the error by about choppiness * |grad D|: a few hundredths on a moderate sea, up to about 0.4 on a
@@ -133,7 +134,8 @@ class OceanConfig:
         set_field("period", require_positive(owner, "period", self.period, unit=" [s]"))
         set_field("phase", require_finite(owner, "phase", self.phase))
         set_field("seed", require_int_in_range(owner, "seed", self.seed, 0, 2**63 - 1))
-        set_field("gravity", require_positive(owner, "gravity", self.gravity, unit=" [m/s^2]"))
+        if not isinstance(self.water, WaterConfig):
+            raise ValueError(f"{owner}.water must be a WaterConfig, got {self.water!r}")
         set_field(
             "inversion_iterations",
             require_int_in_range(owner, "inversion_iterations", self.inversion_iterations, 0, 32),

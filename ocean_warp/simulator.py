@@ -16,6 +16,7 @@ from .ocean import Ocean
 from .replay import ReplayedLaunches
 from .torch_streams import ordered_with_torch
 from .validation import require_in_range, require_int_in_range, require_positive
+from .water_config import WaterConfig
 
 __all__ = ["Simulator", "SimulatorConfig", "ocean_updates_of_step", "launch_clock_advance"]
 
@@ -29,7 +30,7 @@ class SimulatorConfig:
     substeps: int = 4
     """Substeps per step: ocean, water forces and integration run this often, each dt / substeps."""
     hydrodynamics: HydrodynamicsConfig = dataclasses.field(default_factory=HydrodynamicsConfig)
-    """Water and the per-triangle force model."""
+    """The per-triangle force model (the water it acts in is the ocean's: ``OceanConfig.water``)."""
     ocean_every_substep: bool = True
     """Re-evaluate the ocean every substep (True) or once per step, at its start (False, cheaper)."""
     hull_pressure: bool = True
@@ -85,10 +86,6 @@ class Simulator:
             raise ValueError("Simulator needs an ocean_warp.Ocean and an ocean_warp.Fleet")
         if ocean.device != fleet.device:
             raise ValueError(f"Simulator: the ocean is on {ocean.device} but the fleet on {fleet.device}")
-        hydro = self.config.hydrodynamics
-        if not math.isclose(hydro.gravity, ocean.config.gravity, rel_tol=1e-9):
-            raise ValueError(f"Simulator: HydrodynamicsConfig.gravity {hydro.gravity} differs from "
-                             f"OceanConfig.gravity {ocean.config.gravity}; the waves and the boats must share g")
         self.ocean = ocean
         self.fleet = fleet
         self.device = fleet.device
@@ -98,7 +95,8 @@ class Simulator:
         self.block_dim = self.config.block_dim or (128 if self.device.is_cuda else 1)
         vertex_rounds = -(-fleet.model.max_vertex_count // self.block_dim)
         self._hull_wrenches = hull_wrenches_kernel(vertex_rounds, self.block_dim)
-        self.water = _water_model(hydro, self.config.substep_dt)
+        self.water = _water_model(self.config.hydrodynamics, ocean.config.water, self.config.substep_dt)
+        """The hull pass's view of the hull model and of the ocean's water (its density, gravity, viscosity)."""
         self.bounds = SafetyBounds()
         self.bounds.max_altitude = self.config.max_altitude
         self.bounds.max_depth = self.config.max_depth
@@ -127,7 +125,7 @@ class Simulator:
         """One substep of the rigid bodies with the wrenches computed last."""
         fleet = self.fleet
         wp.launch(integrate_boats, dim=fleet.count, device=self.device,
-                  inputs=[fleet.model.body, fleet.model.hull_type, self.config.hydrodynamics.gravity, self.config.substep_dt,
+                  inputs=[fleet.model.body, fleet.model.hull_type, self.ocean.config.water.gravity, self.config.substep_dt,
                           self.bounds, fleet.forces.hydro_wrench, fleet.forces.model_wrench, fleet.control.wrench_world, fleet.control.wrench_body,
                           fleet.state.water_velocity],
                   outputs=[fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.status])
@@ -184,8 +182,8 @@ def launch_clock_advance(time: wp.array, substep_dt: float, device) -> None:
     wp.launch(advance_time, dim=1, inputs=[time, wp.float64(substep_dt)], device=device)
 
 
-def _water_model(config: HydrodynamicsConfig, substep: float) -> WaterModel:
-    return struct_from(WaterModel, config, density=config.water_density,
+def _water_model(config: HydrodynamicsConfig, water: WaterConfig, substep: float) -> WaterModel:
+    return struct_from(WaterModel, config, water,
                        inverse_reference_speed=1.0 / config.reference_speed,
                        skin_friction=int(config.skin_friction), friction_factor=1.0 + config.form_factor,
                        cross_flow_only=int(config.cross_flow_only), slamming=int(config.slamming),

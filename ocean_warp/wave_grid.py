@@ -148,7 +148,7 @@ def _frequency_spectrum(config: OceanConfig, omega: np.ndarray) -> np.ndarray:
     if config.spectrum is Spectrum.JONSWAP:
         return spectra.jonswap(omega, config.significant_wave_height, config.peak_period, config.gamma)
     if config.wind_speed is not None:
-        return spectra.pierson_moskowitz_wind(omega, config.wind_speed, config.gravity)
+        return spectra.pierson_moskowitz_wind(omega, config.wind_speed, config.water.gravity)
     return spectra.pierson_moskowitz(omega, config.significant_wave_height, config.peak_period)
 
 
@@ -158,7 +158,7 @@ def _spectral_h0(config: OceanConfig, kx, ky, omega, excluded) -> tuple[np.ndarr
     k = np.hypot(kx, ky)
     safe_k = np.where(k > 0.0, k, 1.0)
     # Wavenumber spectrum along |k|: S_k(k) = S(omega(k)) d omega / dk [m^3].
-    s_k = _frequency_spectrum(config, omega) * spectra.dispersion_domega_dk(safe_k, config.depth, config.gravity)
+    s_k = _frequency_spectrum(config, omega) * spectra.dispersion_domega_dk(safe_k, config.depth, config.water.gravity)
     ring_share = _directional_weights(config, kx, ky, excluded)
     # The ring of radius k and width dk holds S_k dk of variance; each cell takes its share, and the
     # pair h0(k), conj(h0(-k)) splits a cell's variance in two: E|h0|^2 = S_k dk share / 2.
@@ -172,7 +172,7 @@ def _regular_h0(config: OceanConfig, kx, ky, excluded) -> tuple[np.ndarray, Regu
     n = config.resolution
     dk = 2.0 * math.pi / config.tile_size
     omega_target = 2.0 * math.pi / config.period
-    k_target = float(spectra.wavenumber_from_omega(omega_target, config.depth, config.gravity))
+    k_target = float(spectra.wavenumber_from_omega(omega_target, config.depth, config.water.gravity))
     n_x = round(k_target * math.cos(config.direction) / dk)
     n_y = round(k_target * math.sin(config.direction) / dk)
     if (n_x, n_y) == (0, 0):
@@ -193,7 +193,7 @@ def _regular_h0(config: OceanConfig, kx, ky, excluded) -> tuple[np.ndarray, Regu
         )
     wavevector = (float(kx[iy, ix]), float(ky[iy, ix]))
     k_grid = math.hypot(*wavevector)
-    dispersion = float(spectra.dispersion_omega(k_grid, config.depth, config.gravity))
+    dispersion = float(spectra.dispersion_omega(k_grid, config.depth, config.water.gravity))
     omega = float(loop_frequencies(dispersion, config.loop_period))
     if abs(omega / dispersion - 1.0) > 0.01:
         warnings.warn(
@@ -219,7 +219,7 @@ def build_wave_grid(config: OceanConfig) -> WaveGrid:
     """Lay ``config``'s sea state on its grid: amplitudes, frequencies and the kernel's cell constants."""
     kx, ky = _wavevectors(config)
     k = np.hypot(kx, ky)
-    omega = spectra.dispersion_omega(k, config.depth, config.gravity)
+    omega = spectra.dispersion_omega(k, config.depth, config.water.gravity)
     excluded = _excluded_cells(config, kx, ky)
     regular_wave = None
     if config.spectrum is Spectrum.REGULAR:

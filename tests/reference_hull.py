@@ -42,14 +42,14 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, flows: np.ndarray):
     return points, point_depths, point_flows
 
 
-def piece_wrench(r, d, u, linear, angular, friction, config) -> np.ndarray:
-    """(force, moment about the origin) on one submerged triangle, body frame."""
+def piece_wrench(r, d, u, linear, angular, friction, config, water) -> np.ndarray:
+    """(force, moment about the origin) on one submerged triangle, body frame, in ``water`` (a WaterConfig)."""
     area_vector = 0.5 * np.cross(r[1] - r[0], r[2] - r[0])
     area = np.linalg.norm(area_vector)
     if area < 1e-12:
         return np.zeros(6)
     normal = area_vector / area
-    rho_g = config.water_density * config.gravity
+    rho_g = water.density * water.gravity
     pressure = rho_g * np.asarray(d)
     force = -pressure.mean() * area_vector
     midpoints = [0.5 * (r[i] + r[(i + 1) % 3]) for i in range(3)]
@@ -71,7 +71,7 @@ def piece_wrench(r, d, u, linear, angular, friction, config) -> np.ndarray:
                 * (-cos_t)**config.suction_falloff * area * normal
         if config.skin_friction:
             tangential = relative - (relative @ normal) * normal
-            drag = drag - 0.5 * config.water_density * friction * area * np.linalg.norm(tangential) * tangential
+            drag = drag - 0.5 * water.density * friction * area * np.linalg.norm(tangential) * tangential
         force = force + drag
         moment = moment + np.cross(centroid, drag)
     return np.concatenate([force, moment])
@@ -82,20 +82,21 @@ def ittc_friction(speed: float, length: float, viscosity: float) -> float:
     return 0.075 / (np.log10(reynolds) - 2.0) ** 2
 
 
-def hull_wrench(vertices, triangles, depth, flow, nu, config, boat_flow) -> np.ndarray:
+def hull_wrench(vertices, triangles, depth, flow, nu, config, boat_flow, water) -> np.ndarray:
     """Wrench (Fx, Fy, Fz, Mx, My, Mz), body frame, about the origin, on one hull.
 
     vertices (V, 3) [m] and triangles (T, 3) of the hull; depth (V,) [m] below the local surface and
     flow (V, 3) water velocity [m/s] per vertex in the body frame; nu (6,) Fossen velocity; boat_flow
-    (3,) water velocity at the origin (body frame), for the Reynolds number."""
+    (3,) water velocity at the origin (body frame), for the Reynolds number; ``config`` the hull model
+    (HydrodynamicsConfig), ``water`` its water (WaterConfig)."""
     linear, angular = np.asarray(nu[:3], float), np.asarray(nu[3:], float)
     length = np.ptp(vertices[:, 0])
-    friction = ittc_friction(np.linalg.norm(linear - boat_flow), length, config.kinematic_viscosity)
+    friction = ittc_friction(np.linalg.norm(linear - boat_flow), length, water.kinematic_viscosity)
     total = np.zeros(6)
     for corners in triangles:
         points, point_depths, point_flows = clip_submerged(vertices[corners], depth[corners], flow[corners])
         for k in range(1, len(points) - 1):
             fan = [0, k, k + 1]
             total += piece_wrench([points[i] for i in fan], [point_depths[i] for i in fan],
-                                  [point_flows[i] for i in fan], linear, angular, friction, config)
+                                  [point_flows[i] for i in fan], linear, angular, friction, config, water)
     return total

@@ -30,6 +30,7 @@ class TorchHullReference:
         boat = fleet.model.boat_types[0]
         device = torch.device("cuda" if fleet.device.is_cuda else "cpu")
         self.device, self.hydro, self.config = device, hydro, simulator.config
+        self.water = water = simulator.ocean.config.water
         as_tensor = lambda a, dtype=torch.float32: torch.as_tensor(a, dtype=dtype, device=device)  # noqa: E731
         self.vertices = as_tensor(boat.hull.vertices)
         self.triangles = as_tensor(boat.hull.triangles, torch.int64)
@@ -41,7 +42,7 @@ class TorchHullReference:
         self.inverse_mass_matrix = as_tensor(boat.mass_matrix).inverse()
         self.linear_damping = as_tensor(boat.linear_damping)
         self.quadratic_damping = as_tensor(boat.quadratic_damping)
-        self.weight = as_tensor([0.0, 0.0, -boat.mass * hydro.gravity])
+        self.weight = as_tensor([0.0, 0.0, -boat.mass * water.gravity])
 
         ocean = simulator.ocean
         self.cell = ocean.config.cell_size
@@ -102,7 +103,7 @@ class TorchHullReference:
 
         linear, angular = self.velocity[:, None, :3], self.velocity[:, None, 3:]
         reynolds = torch.clamp(torch.linalg.norm(self.velocity[:, :3] - origin_flow, dim=-1) * self.length
-                               / self.hydro.kinematic_viscosity, min=1e5)
+                               / self.water.kinematic_viscosity, min=1e5)
         friction = (0.075 / (torch.log10(reynolds) - 2.0) ** 2)[:, None]
 
         r = self.vertices[self.triangles][None].expand(len(depth), -1, -1, -1)  # (B, T, 3, 3)
@@ -147,7 +148,7 @@ class TorchHullReference:
         area = torch.linalg.norm(area_vector, dim=-1, keepdim=True)
         valid = use & (area[..., 0] > 1e-12)
         normal = area_vector / torch.clamp(area, min=1e-30)
-        rho_g = h.water_density * h.gravity
+        rho_g = self.water.density * self.water.gravity
         p = [rho_g * x for x in d]
         pressure_sum = (p[0] + p[1] + p[2])[..., None]
         force = -(pressure_sum / 3.0) * area_vector
@@ -166,7 +167,7 @@ class TorchHullReference:
         drag = torch.where(cos_t > 0, -drag_pressure, suction) * area * normal
         if h.skin_friction:
             tangential = relative - (relative * normal).sum(-1, keepdim=True) * normal
-            drag = drag - 0.5 * h.water_density * friction[..., None] * area * torch.linalg.norm(
+            drag = drag - 0.5 * self.water.density * friction[..., None] * area * torch.linalg.norm(
                 tangential, dim=-1, keepdim=True) * tangential
         drag = torch.where(moving, drag, torch.zeros_like(drag))
         wrench = torch.cat([force + drag, moment + torch.cross(centroid, drag, dim=-1)], dim=-1)

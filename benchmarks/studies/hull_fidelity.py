@@ -139,8 +139,7 @@ def _held(eboat: EBoat, positions, orientations, velocities, *, drag: bool) -> n
     Fossen velocities in still water, with or without the water model's drag."""
     water = eboat.hydrodynamics if drag else eboat.hydrodynamics.without_drag()
     fleet = ow.Fleet(eboat.boat_type, len(positions), device="cpu")
-    ocean = ow.Ocean(ow.OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0,
-                                    gravity=water.gravity), device="cpu")
+    ocean = ow.Ocean(ow.OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0), device="cpu")
     simulator = ow.Simulator(ocean, fleet, ow.SimulatorConfig(hydrodynamics=water))
     fleet.reset(position=positions, orientation=orientations, velocity=velocities)
     simulator.compute_hull_wrenches()
@@ -228,7 +227,7 @@ def measure(budget: int | None, with_polar: bool) -> Fidelity:
     config = EBoatConfig(hull_triangles=budget)
     eboat = EBoat(config)
     height = eboat.rest_height()
-    numpy_height, numpy_gm = numpy_hydrostatics(eboat, eboat.hydrodynamics.water_density)
+    numpy_height, numpy_gm = numpy_hydrostatics(eboat, ow.WaterConfig().density)
     heave, roll = decay_periods(config, height)
     label = "full" if budget is None else str(budget)
     return Fidelity(label, eboat.hull.triangle_count, height, -(height + eboat.hull.vertices[:, 2].min()),

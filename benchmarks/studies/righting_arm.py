@@ -103,7 +103,7 @@ def steady_heels(moments, *, seconds: float = 60.0, ramp: float = 10.0, average:
         raise ValueError(f"steady_heels.average must be in (0, seconds - ramp] [s], got {average!r}")
     config = EBoatSimulatorConfig(wind=WindConfig(speed=0.0), dt=dt, substeps=substeps)
     sim = EBoatSimulator(config, len(moments), device=device)
-    rest = -floating_waterline(sim.eboat.hull, sim.eboat.mass_properties.mass, config.water_density)
+    rest = -floating_waterline(sim.eboat.hull, sim.eboat.mass_properties.mass, config.water.density)
     sim.reset(position=(0.0, 0.0, rest))
     steps, window = int(round(seconds / dt)), int(round(average / dt))
     wrench = np.zeros((len(moments), 6), dtype=np.float32)
@@ -232,7 +232,7 @@ def main(argv=None) -> None:
 
     wp.config.quiet = True
     eboat = EBoat()
-    gravity = EBoatSimulatorConfig().gravity
+    gravity = EBoatSimulatorConfig().water.gravity
     curve, heave_only = eboat_curves(eboat)
     vpp = vpp_righting_arm(args.vpp_inputs)
     gm = initial_metacentric_height(eboat)

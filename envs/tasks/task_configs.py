@@ -24,6 +24,7 @@ from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Profile
 from ocean_warp.ocean_config import OceanConfig
 from ocean_warp.sensors import SensorConfig
 from ocean_warp.validation import require_choice, require_in_range, require_non_negative, require_positive
+from ocean_warp.water_config import WaterConfig
 from ocean_warp.wind import WindConfig
 
 __all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
@@ -160,6 +161,10 @@ class RewardConfig:
                                                                           getattr(self, field.name)))
 
 
+FRESH_WATER = WaterConfig(density=997.0)
+"""The Gazebo twin's water (the seed's tasks); every other task sails sea water."""
+
+
 def _seed_sea() -> OceanConfig:
     """Gentle waves, as the seed's (three small Pierson-Moskowitz components): Hs 0.3 m, Tp 3 s."""
     return OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=0.3, peak_period=3.0)
@@ -268,8 +273,8 @@ class WaypointConfig(TaskConfig):
     lets this task train on a laptop's CPU. The seed gave no time limit; ours is 600 s."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
-        boat=EBoatConfig(profile=Profile.SEED), ocean=_seed_sea(), sensors=SensorConfig.noise_free(),
-        water_density=997.0, ocean_every_substep=False))
+        boat=EBoatConfig(profile=Profile.SEED), ocean=dataclasses.replace(_seed_sea(), water=FRESH_WATER),
+        sensors=SensorConfig.noise_free(), ocean_every_substep=False))
 
 
 @dataclasses.dataclass(frozen=True)

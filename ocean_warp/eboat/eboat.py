@@ -19,6 +19,7 @@ from ..lifting_surface import LiftingSurface
 from ..resistance import DEFAULT_FORM_FACTOR, ResiduaryResistance
 from ..sail import Mainsail
 from ..validation import require_choice
+from ..water_config import WaterConfig
 from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull
 from .mass_properties import MassProperties, eboat_mass_properties
 from .sheet import ACTUATORS, BOOM_HEIGHT, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, FoilFigures, Version
@@ -269,29 +270,29 @@ class EBoat:
             setattr(tables, name, wp.array(np.asarray(values, dtype=np.float32), dtype=float, device=device))
         return tables
 
-    def point_buoyancy(self, device, water: HydrodynamicsConfig) -> PointBuoyancy:
+    def point_buoyancy(self, device, water: WaterConfig) -> PointBuoyancy:
         """The original twin's four buoyancy points (sheet: x = +-0.6, y = +-0.45 m, R 0.4 m, L 2.4 m)."""
         model = PointBuoyancy()
         model.points = wp.array(np.array(self.vrx.points, dtype=np.float32), dtype=wp.vec3, device=device)
         model.radius = self.vrx.hull_radius
         model.slice_length = self.vrx.hull_length / 2.0
-        model.density = water.water_density
+        model.density = water.density
         model.gravity = water.gravity
         return model
 
-    def rest_height(self, device="cpu", water: HydrodynamicsConfig | None = None) -> float:
-        """Height [m] of the base frame above still water (``water``, default this boat's) when the boat
-        floats upright at rest (found by bisection on the vertical force of the hull pass)."""
+    def rest_height(self, device="cpu", water: WaterConfig | None = None) -> float:
+        """Height [m] of the base frame above still ``water`` (default sea water) when the boat floats
+        upright at rest (found by bisection on the vertical force of the hull pass, without drag)."""
         from ..fleet import Fleet
         from ..ocean import Ocean
         from ..ocean_config import OceanConfig
         from ..simulator import Simulator, SimulatorConfig
 
         fleet = Fleet(self.boat_type, 1, device=device)
-        water = water if water is not None else self.hydrodynamics
-        still = Ocean(OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0, gravity=water.gravity),
+        water = water if water is not None else WaterConfig()
+        still = Ocean(OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0, water=water),
                       device=device)
-        simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=water.without_drag()))
+        simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=self.hydrodynamics.without_drag()))
         low, high = -0.5, 0.5
         weight = self.boat_type.mass * water.gravity
         for _ in range(40):

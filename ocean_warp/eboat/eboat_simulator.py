@@ -119,7 +119,7 @@ class EBoatSimulator:
     def __init__(self, config: EBoatSimulatorConfig | None = None, count: int = 1, *, device=None,
                  ocean: Ocean | None = None, first_boat: int = 0):
         """``config`` (default: still water, 5 m/s steady wind, the V-C boat); ``count`` boats; ``ocean``: an
-        existing :class:`Ocean` to share instead of building ``config.ocean`` (its gravity must match);
+        existing :class:`Ocean` to share instead of building ``config.ocean`` (its water must be ``config.water``);
         ``first_boat``: this batch is boats [first_boat, first_boat + count) of a larger one with the same
         config: each boat gets that boat's mass variant and its gust and sensor-noise random streams (a
         shard of a batch, as ``ocean_warp.envs.parallel.sharded`` runs one per process, sails like the batch)."""
@@ -133,6 +133,9 @@ class EBoatSimulator:
         self.eboat = EBoat(config.boat)
         if ocean is None:
             ocean = Ocean(config.ocean, device=device)
+        elif ocean.config.water != config.water:
+            raise ValueError(f"EBoatSimulator: the ocean given holds {ocean.config.water}, the config "
+                             f"{config.water}; the boats sail in the water of the ocean they float on")
         self.first_boat = require_int_in_range("EBoatSimulator", "first_boat", first_boat, 0, 2**30)
         self.fleet, mass_scale = _fleet(self.eboat, config, count, device, self.first_boat)
         self.mass_scale = mass_scale
@@ -140,12 +143,12 @@ class EBoatSimulator:
         fixed for the simulator's life: all 1 without ``config.mass_variation``, else boat i has
         ``config.mass_factors()[(first_boat + i) % K]`` (its BoatType: ``fleet.model.boat_types[(first_boat + i) % K]``)."""
         self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device, first_index=self.first_boat)
-        self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water_density, device=device)
+        self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water.density, device=device)
         self.sensors = Sensors(config.sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
-                               gravity=config.gravity, device=device, first_index=self.first_boat)
+                               gravity=config.water.gravity, device=device, first_index=self.first_boat)
         models = [self.wind]
         if config.boat.hydrostatics is Hydrostatics.POINTS:
-            models.append(_PointBuoyancyModel(self.eboat, device, config.hydrodynamics))
+            models.append(_PointBuoyancyModel(self.eboat, device, config.water))
         models += [self.rig, self.sensors]
         self.simulator = Simulator(ocean, self.fleet, config.simulator_config(), models=models)
         self.ocean = ocean

@@ -12,6 +12,7 @@ from ..ocean_config import OceanConfig
 from ..sensors import SensorConfig
 from ..simulator import SimulatorConfig
 from ..validation import require_in_range, require_int_in_range, require_positive
+from ..water_config import WaterConfig
 from ..wind import WindConfig
 from .eboat import EBoatConfig, Hydrostatics, eboat_hydrodynamics
 
@@ -27,28 +28,21 @@ def still_water() -> OceanConfig:
 class EBoatSimulatorConfig:
     """Everything an :class:`~ocean_warp.eboat.EBoatSimulator` is built from; an environment config nests it.
 
-    ``water_density`` and ``gravity`` are the only ones used: the nested ``hydrodynamics`` (the hull's
-    pressure and drag), the rig (keel and rudder), the four-point buoyancy, the sensors and the
-    ``ocean`` (wave dispersion) take theirs from here. After construction ``hydrodynamics`` and
-    ``ocean`` hold these values, so ``config.hydrodynamics.water_density`` is the water the boat
-    sails in.
+    The water (density, gravity, viscosity) is the sea's, ``ocean.water`` (also read as ``config.water``):
+    the waves, the hull's pressure and friction, the keel and rudder, the four-point buoyancy, the boats'
+    weight and the accelerometers all take it from there.
     """
 
     boat: EBoatConfig = dataclasses.field(default_factory=EBoatConfig)
     """Which E-Boat (version, mesh or four-point hydrostatics, original tuning, hull shape)."""
     ocean: OceanConfig = dataclasses.field(default_factory=still_water)
-    """The sea (default: still water). Its ``gravity`` is replaced by ``gravity``."""
+    """The sea and its water (default: still sea water)."""
     wind: WindConfig = dataclasses.field(default_factory=WindConfig)
     """Mean wind, gusts and height profile (every environment starts with this mean)."""
     sensors: SensorConfig = dataclasses.field(default_factory=SensorConfig)
     """Noise and rates of the boat's sensors."""
     hydrodynamics: HydrodynamicsConfig | None = None
-    """The per-triangle water model; None (default): the boat profile's (``eboat_hydrodynamics``). Its
-    ``water_density`` and ``gravity`` are replaced by the fields below."""
-    water_density: float = 1025.0
-    """[kg/m^3] of the water for hull, keel, rudder and buoyancy alike (sea water; the original twin: 997)."""
-    gravity: float = 9.81
-    """[m/s^2] for the boats, the waves and the accelerometers."""
+    """The per-triangle hull model; None (default): the boat profile's (``eboat_hydrodynamics``)."""
     dt: float = 0.05
     """Duration of one ``step()`` [s]; the sensors read once per step."""
     substeps: int = 5
@@ -82,10 +76,6 @@ class EBoatSimulatorConfig:
                            ("sensors", SensorConfig), ("hydrodynamics", HydrodynamicsConfig)):
             if not isinstance(getattr(self, name), kind):
                 raise ValueError(f"{owner}.{name} must be a {kind.__name__}, got {getattr(self, name)!r}")
-        density = require_positive(owner, "water_density", self.water_density, unit=" [kg/m^3]")
-        gravity = require_positive(owner, "gravity", self.gravity, unit=" [m/s^2]")
-        object.__setattr__(self, "water_density", density)
-        object.__setattr__(self, "gravity", gravity)
         object.__setattr__(self, "dt", require_positive(owner, "dt", self.dt, unit=" [s]"))
         object.__setattr__(self, "substeps", require_int_in_range(owner, "substeps", self.substeps, 1, 1000))
         object.__setattr__(self, "mass_variation", require_in_range(owner, "mass_variation", self.mass_variation,
@@ -94,12 +84,13 @@ class EBoatSimulatorConfig:
                                                                        1, 64))
         object.__setattr__(self, "max_tilt", require_in_range(owner, "max_tilt", self.max_tilt, 0.0, math.pi,
                                                               unit=" [rad]"))
-        object.__setattr__(self, "hydrodynamics", dataclasses.replace(self.hydrodynamics, water_density=density,
-                                                                      gravity=gravity))
-        if self.ocean.gravity != gravity:
-            object.__setattr__(self, "ocean", dataclasses.replace(self.ocean, gravity=gravity))
         # The rest is checked where it is used, with the same messages.
         self.simulator_config()
+
+    @property
+    def water(self) -> WaterConfig:
+        """The water the boats sail in: the sea's (``ocean.water``)."""
+        return self.ocean.water
 
     def mass_factors(self) -> np.ndarray:
         """(K,) factors on mass and inertia of the fleet's boat types: [1.0] without mass variation, else

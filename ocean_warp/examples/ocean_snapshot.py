@@ -37,7 +37,7 @@ def measured_frequency_spectrum(heights: list[np.ndarray], config: OceanConfig, 
     n = config.resolution
     k_axis = 2 * math.pi * np.fft.fftfreq(n, d=config.cell_size)
     k = np.hypot(*np.meshgrid(k_axis, k_axis))
-    omega = spectra.dispersion_omega(k, config.depth, config.gravity)
+    omega = spectra.dispersion_omega(k, config.depth, config.water.gravity)
     bins = np.floor(omega / bin_width).astype(np.int64)
     variance = sum(np.abs(np.fft.fft2(h)) ** 2 for h in heights) / (len(heights) * float(n) ** 4)
     per_bin = np.bincount(bins.ravel(), weights=variance.ravel())

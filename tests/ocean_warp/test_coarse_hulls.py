@@ -103,7 +103,7 @@ def test_coarse_hull_floats_upright_at_its_rest_height(device, budget):
     state = sim.fleet.numpy()
     assert_afloat_upright(state)
     eboat = sim.eboat
-    volume = eboat.boat_type.mass / config.water_density
+    volume = eboat.boat_type.mass / config.water.density
     settled = equilibrium_height(np.asarray(eboat.hull.vertices, np.float64), np.asarray(eboat.hull.triangles),
                                  volume, rotation_matrix(state["orientation"][0]))
     np.testing.assert_allclose(height, settled, atol=2e-3)

@@ -10,7 +10,7 @@ import warp as wp
 
 from ocean_warp.device_structs import struct_fields, struct_from
 from ocean_warp.hydrodynamics_config import HydrodynamicsConfig
-from ocean_warp.kernels.hull_forces import WaterModel
+from ocean_warp.water_config import WaterConfig
 
 
 @wp.struct
@@ -50,18 +50,19 @@ def test_a_field_nothing_gives_or_an_unknown_keyword_is_an_error():
 
 
 def test_the_water_model_matches_a_copy_made_by_hand():
-    """The simulator's WaterModel from a config with fresh values, against each field set by hand."""
+    """The simulator's WaterModel from a hull model and a water with fresh values, against each field set by
+    hand."""
     from ocean_warp.simulator import _water_model
 
     rng = np.random.default_rng(5)
-    config = HydrodynamicsConfig(water_density=float(rng.uniform(990, 1030)),
-                                 kinematic_viscosity=float(rng.uniform(1.0e-6, 1.4e-6)),
-                                 form_factor=float(rng.uniform(0.05, 0.3)))
+    config = HydrodynamicsConfig(form_factor=float(rng.uniform(0.05, 0.3)))
+    fluid = WaterConfig(density=float(rng.uniform(990, 1030)), gravity=float(rng.uniform(9.78, 9.83)),
+                        kinematic_viscosity=float(rng.uniform(1.0e-6, 1.4e-6)))
     substep = float(rng.uniform(0.005, 0.02))
-    water = _water_model(config, substep)
-    assert water.density == pytest.approx(config.water_density)
-    assert water.gravity == pytest.approx(config.gravity)
-    assert water.kinematic_viscosity == pytest.approx(config.kinematic_viscosity, rel=1e-6)
+    water = _water_model(config, fluid, substep)
+    assert water.density == pytest.approx(fluid.density)
+    assert water.gravity == pytest.approx(fluid.gravity)
+    assert water.kinematic_viscosity == pytest.approx(fluid.kinematic_viscosity, rel=1e-6)
     assert water.inverse_reference_speed == pytest.approx(1.0 / config.reference_speed)
     assert water.friction_factor == pytest.approx(1.0 + config.form_factor)
     assert water.skin_friction == int(config.skin_friction) and water.slamming == int(config.slamming)

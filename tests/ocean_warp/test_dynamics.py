@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import ocean_warp as ow
-from tests.hull_setups import calm_ocean, random_rotations, rotation_matrix
+from tests.hull_setups import calm_ocean, rotation_matrix
 
 RHO, G = 1025.0, 9.81
 STILL = ow.HydrodynamicsConfig().without_drag()

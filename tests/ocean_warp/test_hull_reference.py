@@ -24,7 +24,10 @@ def test_hull_wrenches_match_numpy_reference(device, rng, falloffs):
     ocean = ow.Ocean(ow.OceanConfig(tile_size=float(rng.uniform(60, 150)), resolution=64,
                                     significant_wave_height=float(rng.uniform(0.5, 2.0)),
                                     peak_period=float(rng.uniform(4, 8)), choppiness=float(rng.uniform(0, 0.8)),
-                                    direction=float(rng.uniform(-np.pi, np.pi)), seed=int(rng.integers(2**31))),
+                                    direction=float(rng.uniform(-np.pi, np.pi)), seed=int(rng.integers(2**31)),
+                                    water=ow.WaterConfig(density=float(rng.uniform(990, 1030)),
+                                                         gravity=float(rng.uniform(9.78, 9.83)),
+                                                         kinematic_viscosity=float(rng.uniform(1.0e-6, 1.4e-6)))),
                      device=device)
     ocean.update(float(rng.uniform(0, 500)))
     hydro = dataclasses.replace(
@@ -51,9 +54,9 @@ def test_hull_wrenches_match_numpy_reference(device, rng, falloffs):
         flow = sample.velocity.astype(np.float64) @ rotation  # world -> body
         boat_flow = ocean.sample(positions[boat, :2]).velocity[0].astype(np.float64) @ rotation
         expected = reference_hull.hull_wrench(hull.vertices, hull.triangles, depth, flow, velocities[boat], hydro,
-                                              boat_flow)
+                                              boat_flow, ocean.config.water)
         submerged_boats += bool((depth > 0).any() and (depth <= 0).any())
-        force_scale = hydro.water_density * hydro.gravity * hull.volume
+        force_scale = ocean.config.water.density * ocean.config.water.gravity * hull.volume
         moment_scale = force_scale * np.ptp(hull.vertices, axis=0).max()
         np.testing.assert_allclose(wrenches[boat, :3], expected[:3], rtol=0, atol=2e-4 * force_scale)
         np.testing.assert_allclose(wrenches[boat, 3:], expected[3:], rtol=0, atol=2e-4 * moment_scale)

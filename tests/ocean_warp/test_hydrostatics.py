@@ -166,7 +166,7 @@ def test_degenerate_triangle_carries_no_force(device, rng):
     depths[:8] = 0.0
     out = wp.zeros(64, dtype=vec6, device=device)
     wp.launch(_degenerate_triangle_wrenches, dim=64, device=device,
-              inputs=[wp.array(depths, dtype=wp.vec3, device=device), _water_model(ow.HydrodynamicsConfig(), 0.01)],
+              inputs=[wp.array(depths, dtype=wp.vec3, device=device), _water_model(ow.HydrodynamicsConfig(), ow.WaterConfig(), 0.01)],
               outputs=[out])
     result = out.numpy()
     assert np.all(np.isfinite(result))

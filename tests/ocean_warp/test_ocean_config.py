@@ -36,7 +36,7 @@ BAD_VALUES = [
     ("phase", math.inf, r"phase must be finite"),
     ("seed", -1, r"seed must be an integer"),
     ("seed", 1.5, r"seed must be an integer"),
-    ("gravity", 0.0, r"gravity must be > 0"),
+    ("water", 9.81, r"water must be a WaterConfig"),
     ("inversion_iterations", 100, r"inversion_iterations must be an integer in \[0, 32\]"),
     ("inversion_tolerance", 0.0, r"inversion_tolerance must be > 0 \[m\]"),
     ("loop_period", 0.0, r"loop_period must be > 0 \[s\] or None"),

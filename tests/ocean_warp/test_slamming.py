@@ -59,7 +59,7 @@ def test_slamming_force_follows_kerners_formula(device, rng, saturated):
     assert growth > 0
     max_acceleration = growth * (0.5 if saturated else rng.uniform(1.5, 4.0))
     water = _water_model(ow.HydrodynamicsConfig(slamming=True, slamming_power=power,
-                                                slamming_max_acceleration=max_acceleration), dt)
+                                                slamming_max_acceleration=max_acceleration), ow.WaterConfig(), dt)
 
     swept_rate = wp.array([float(NO_SWEPT_RATE)], dtype=float, device=device)
     out = wp.zeros(2, dtype=vec6, device=device)

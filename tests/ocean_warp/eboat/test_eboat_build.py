@@ -90,14 +90,14 @@ def test_hull_is_a_sailboat_hull_within_the_sheets_box():
 def mesh_equilibrium_height(eboat, turn):
     """Height [m] of the base frame at which the numpy reference's buoyancy on the hull, held at the
     orientation ``turn``, carries the boat's weight in still water (bisection)."""
-    hydro = eboat.hydrodynamics.without_drag()
+    hydro, water = eboat.hydrodynamics.without_drag(), ow.WaterConfig()
     vertices = eboat.hull.vertices
-    weight = eboat.boat_type.mass * hydro.gravity
+    weight = eboat.boat_type.mass * water.gravity
 
     def buoyancy(height):
         depth = -((vertices @ turn.T)[:, 2] + height)
         wrench = reference_hull.hull_wrench(vertices, eboat.hull.triangles, depth, np.zeros_like(vertices), np.zeros(6),
-                                            hydro, np.zeros(3))
+                                            hydro, np.zeros(3), water)
         return (turn @ wrench[:3])[2]
 
     low, high = -0.3, 0.3
@@ -111,7 +111,7 @@ def points_equilibrium_depth(eboat):
     """Depth [m] of the four points when each carries a quarter of the weight: rho g (L/2) S(R, h) = m g / 4,
     with the circle segment S written out here."""
     radius, length = eboat.vrx.hull_radius, eboat.vrx.hull_length
-    target = eboat.boat_type.mass / (2.0 * EBoatSimulatorConfig().water_density * length)
+    target = eboat.boat_type.mass / (2.0 * EBoatSimulatorConfig().water.density * length)
     low, high = 0.0, radius
     for _ in range(50):
         h = 0.5 * (low + high)

@@ -13,22 +13,31 @@ from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.torch_streams import ordered_with_torch
 
 
-def test_water_density_has_one_source():
-    config = EBoatSimulatorConfig(water_density=997.0, gravity=9.815)
-    assert config.hydrodynamics.water_density == 997.0 and config.hydrodynamics.gravity == 9.815
-    assert config.ocean.gravity == 9.815
+def test_water_has_one_source():
+    """The sea's water (OceanConfig.water) reaches the hull pass, the rig, the buoyancy points, the rigid
+    bodies' weight and the accelerometers; an ocean of other water is refused by name."""
+    water = ow.WaterConfig(density=997.0, gravity=9.815)
+    config = EBoatSimulatorConfig(ocean=dataclasses.replace(EBoatSimulatorConfig().ocean, water=water))
+    assert config.water is config.ocean.water
     sim = EBoatSimulator(config, 1, device="cpu")
+    assert sim.sensors._model.gravity == pytest.approx(9.815)
     assert sim.rig.parameters.water_density == pytest.approx(997.0)
     assert sim.simulator.water.density == pytest.approx(997.0)
     assert sim.simulator.water.gravity == pytest.approx(9.815)
     points = EBoatSimulator(dataclasses.replace(config, boat=EBoatConfig(hydrostatics="points")), 1, device="cpu")
     buoyancy = points.simulator.models[1].parameters
     assert buoyancy.density == pytest.approx(997.0) and buoyancy.gravity == pytest.approx(9.815)
+    with pytest.raises(ValueError, match="the boats sail in the water of the ocean they float on"):
+        EBoatSimulator(config, 1, device="cpu", ocean=ow.Ocean(EBoatSimulatorConfig().ocean, device="cpu"))
+    with pytest.raises(ValueError, match=r"WaterConfig\.density must be > 0"):
+        ow.WaterConfig(density=-1.0)
+    with pytest.raises(ValueError, match=r"WaterConfig\.gravity must be > 0"):
+        ow.WaterConfig(gravity=0.0)
+    with pytest.raises(ValueError, match=r"OceanConfig\.water must be a WaterConfig"):
+        ow.OceanConfig(water=1025.0)
 
 
 @pytest.mark.parametrize("field,value,message", [
-    ("water_density", -1.0, "water_density must be > 0"),
-    ("gravity", 0.0, "gravity must be > 0"),
     ("dt", math.nan, "dt must be a number > 0"),
     ("substeps", 0, r"substeps must be an integer in \[1, 1000\]"),
     ("wind", 5.0, "wind must be a WindConfig"),

@@ -39,7 +39,7 @@ def test_mass_variants_accelerate_as_their_mass(device, hydrostatics):
         assert variant.hull is base.hull
     assert base.added_mass[0, 0] == 0.0  # the E-Boat has no surge added mass (sheet)
 
-    height = 0.0 if hydrostatics == "points" else sim.eboat.rest_height("cpu", config.hydrodynamics)
+    height = 0.0 if hydrostatics == "points" else sim.eboat.rest_height("cpu", config.water)
     sim.reset(position=[0.0, 0.0, height], wind_speed=0.0)
     sim.tensors.control.propeller[:k] = 5
     sim.step()
@@ -225,7 +225,7 @@ def test_significant_wave_height_rescales_the_sea_in_place(device):
 def test_significant_wave_height_of_a_wind_sea(device):
     config = small_sea(spectrum="pierson_moskowitz", wind_speed=4.0)
     ocean = ow.Ocean(config, device=device)
-    base = ow.spectra.pierson_moskowitz_wind_sea_state(4.0, config.gravity)[0]
+    base = ow.spectra.pierson_moskowitz_wind_sea_state(4.0, config.water.gravity)[0]
     assert ocean.spectrum_significant_wave_height == pytest.approx(base)
     original = ocean.field_numpy("height").copy()
     ocean.set_significant_wave_height(2.0 * base)
