@@ -193,7 +193,10 @@ class _WorkerPool:
             try:
                 conn.send(message)
             except (BrokenPipeError, ConnectionResetError, EOFError):
-                self._fail(index, "could not be reached")
+                # Most often the worker died: say how (a broken pipe alone hides the cause).
+                process = self.processes[index]
+                process.join(1.0)
+                self._fail(index, "could not be reached" if process.is_alive() else self._death(index))
 
     def gather(self, timeout: float) -> list[Any]:
         """Every worker's reply payload, in order; raises RuntimeError on a death, an error or a timeout."""
