@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 import warp as wp
 
+from .device_structs import struct_from
 from .kernels.random_streams import SENSOR_NOISE, SENSOR_RESET_NOISE, advance_counter
 from .kernels.sensor_readings import CHANNELS, SensorModel, read_sensors, reset_sensors
 from .kernels.spatial import vec6
@@ -114,15 +115,11 @@ class Sensors:
         self._previous_velocity = wp.zeros(self.count, dtype=wp.vec3, device=self.device)
         self._counter = wp.zeros(1, dtype=int, device=self.device)
         self._every_boat = wp.ones(self.count, dtype=wp.int32, device=self.device)
-        model = SensorModel()
-        model.noise_std = wp.array(self.config.channel_noise(), dtype=float, device=self.device)
-        model.period = wp.array(self.config.channel_periods(step), dtype=int, device=self.device)
-        model.masthead = wp.vec3(*(float(v) for v in masthead))
-        model.gravity = gravity
-        model.step = step
-        model.seed = self.config.seed
-        model.first_index = require_int_in_range("Sensors", "first_index", first_index, 0, 2**30)
-        self._model = model
+        self._model = struct_from(
+            SensorModel, self.config, noise_std=wp.array(self.config.channel_noise(), dtype=float, device=self.device),
+            period=wp.array(self.config.channel_periods(step), dtype=int, device=self.device),
+            masthead=wp.vec3(*(float(v) for v in masthead)), gravity=gravity, step=step,
+            first_index=require_int_in_range("Sensors", "first_index", first_index, 0, 2**30))
 
     def substep(self, simulator) -> None:
         """Sensors read once per step, not per substep."""

@@ -68,16 +68,12 @@ class WindConfig:
     def gust_model(self, dt: float, first_index: int = 0) -> GustModel:
         """The kernels' view of this config for substeps of ``dt`` [s]; ``first_index``: the random-stream
         number of the batch's first environment (see ``GustModel.first_index``)."""
-        gusts = GustModel()
-        gusts.speed_decay = math.exp(-dt / self.gust_speed_time)
-        gusts.speed_noise = self.gust_speed_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_speed_time))
-        gusts.direction_decay = math.exp(-dt / self.gust_direction_time)
-        gusts.direction_noise = self.gust_direction_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_direction_time))
-        gusts.profile_exponent = self.profile_exponent
-        gusts.reference_height = self.reference_height
-        gusts.seed = self.seed
-        gusts.first_index = int(first_index)
-        return gusts
+        return struct_from(
+            GustModel, self, speed_decay=math.exp(-dt / self.gust_speed_time),
+            speed_noise=self.gust_speed_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_speed_time)),
+            direction_decay=math.exp(-dt / self.gust_direction_time),
+            direction_noise=self.gust_direction_std * math.sqrt(1.0 - math.exp(-2.0 * dt / self.gust_direction_time)),
+            first_index=int(first_index))
 
 
 class Wind:
