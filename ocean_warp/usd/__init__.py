@@ -21,7 +21,7 @@ at. What a recorder draws is given in option groups (:mod:`ocean_warp.usd.stage_
 in :mod:`ocean_warp.usd.paths`. Importing this package imports ``pxr`` (usd-core).
 """
 
-from .boat_prototype import BoatParts, eboat_parts
+from ..eboat.parts import BoatParts, eboat_parts
 from .ocean_mesh import OceanLattice
 from .preview import render_preview
 from .recorder import (INSTANCING_THRESHOLD, TIME_CODES_PER_SECOND, StageRecorder, loop_path_for, record_eboat,

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 from pxr import Gf, Kind, Sdf, Usd, UsdGeom, Vt
 
-from .boat_prototype import BODY, BOOM, RUDDER, BoatParts
+from ..eboat.parts import BODY, BOOM, RUDDER, BoatParts
 from .materials import HULL_PALETTE, Look, LOOKS_BY_NAME, bind_look, define_look, hull_look_name
 from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, boat_path
 

@@ -8,7 +8,8 @@ import math
 import numpy as np
 from pxr import Gf, Kind, Sdf, Tf, Usd, UsdGeom, Vt
 
-from .geometry import arrow, define_mesh, tube
+from ..meshes import arrow, tube
+from .geometry import define_mesh
 from .materials import LOOKS_BY_NAME, bind_look, define_look
 from .paths import (ROUTE, ROUTE_INDICES_ATTRIBUTE, ROUTE_PATH, WAYPOINTS, WIND, WIND_DIRECTION_ATTRIBUTE,
                     WIND_SPEED_ATTRIBUTE)

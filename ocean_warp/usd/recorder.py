@@ -32,7 +32,8 @@ from pxr import Sdf, Usd
 
 from ..ocean import Ocean
 from ..validation import require_int_in_range, require_positive
-from .boat_prototype import define_boat_prototype, eboat_parts
+from ..eboat.parts import eboat_parts
+from .boat_prototype import define_boat_prototype
 from .fleet_prims import InstancedFleetWriter, PrimFleetWriter
 from .markers import define_route, define_wind_arrow
 from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
