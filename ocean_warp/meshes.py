@@ -27,6 +27,15 @@ class MeshData:
         """The same mesh moved by ``offset`` [m]."""
         return MeshData(self.points + np.asarray(offset, dtype=np.float64), self.face_counts, self.face_indices)
 
+    def triangles(self) -> np.ndarray:
+        """(T, 3) vertex indices: every polygon split into a fan of triangles from its first vertex."""
+        rows, start = [], 0
+        for count in self.face_counts:
+            face = self.face_indices[start:start + count]
+            rows.extend((face[0], face[k], face[k + 1]) for k in range(1, count - 1))
+            start += count
+        return np.asarray(rows, dtype=np.int32).reshape(-1, 3)
+
     @property
     def extent(self) -> np.ndarray:
         """(2, 3) smallest and largest corner of the bounding box [m]."""
