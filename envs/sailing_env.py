@@ -10,6 +10,7 @@ arrays that torch reads through views bound in the constructor (``env.buffers``)
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -67,6 +68,25 @@ class DecisionHook:
 
     def after_physics(self, env: "SailingEnv") -> None:
         """After the decision's physics, before rewards, episode ends and resets."""
+
+
+@dataclasses.dataclass
+class _HookChain(DecisionHook):
+    """Several hooks as one, in order."""
+
+    hooks: list
+
+    def after_actions(self, env: "SailingEnv") -> None:
+        for hook in self.hooks:
+            hook.after_actions(env)
+
+    def after_physics_step(self, env: "SailingEnv", step: int) -> None:
+        for hook in self.hooks:
+            hook.after_physics_step(env, step)
+
+    def after_physics(self, env: "SailingEnv") -> None:
+        for hook in self.hooks:
+            hook.after_physics(env)
 
 
 class SailingEnv:
@@ -170,6 +190,8 @@ class SailingEnv:
             final_length=view(self.final_length), final_success=view(self.final_success),
             final_status=view(self.final_status), final_waypoints=view(self.final_waypoints))
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`)."""
+        self._hooks = _HookChain([])
+        """The hooks :meth:`attach` added to every step."""
         self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
                                                    capture=self.task.simulator.capture_graph)
         self.reset()
@@ -190,10 +212,21 @@ class SailingEnv:
     def _launch_decision(self) -> None:
         self.launch_decision()
 
+    def attach(self, hook: DecisionHook) -> None:
+        """Run ``hook``'s launches inside every :meth:`step` from now on (a sensor that scans during the
+        decision, a recorder); hooks run in the order attached. The decision's graph is captured anew at the
+        next step."""
+        if not isinstance(hook, DecisionHook):
+            raise ValueError(f"SailingEnv.attach: hook must be a DecisionHook, got {hook!r}")
+        self._hooks.hooks.append(hook)
+        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
+                                                   capture=self.task.simulator.capture_graph)
+
     def launch_decision(self, hook: DecisionHook | None = None) -> None:
         """The launches of one decision (what :meth:`step` replays): actions to commands, the physics steps
-        and the task's kernels, with ``hook``'s launches at its three points (launch only; graph-safe when
-        the hook's are)."""
+        and the task's kernels, with the attached hooks' launches (:meth:`attach`) and then ``hook``'s at
+        their three points (launch only; graph-safe when the hooks' are)."""
+        hook = self._hooks if hook is None else _HookChain(self._hooks.hooks + [hook])
         state = self.simulator.state
         self.launch_actions()
         wp.copy(self.propeller_level, self.simulator.control.propeller)
