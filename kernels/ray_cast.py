@@ -41,6 +41,8 @@ MARCH_STEPS = wp.constant(512)
 BISECTIONS = wp.constant(12)
 MIN_STEP = wp.constant(0.02)
 """Shortest march step [m]."""
+BAND_MARGIN = wp.constant(0.01)
+"""[m] added above and below the sea's height band."""
 
 
 @wp.struct
@@ -191,8 +193,9 @@ def _water_gap(surface: OceanSurface, point: wp.vec3) -> float:
 @wp.func
 def _march_water(scene: SceneView, origin: wp.vec3, direction: wp.vec3, t_min: float, t_max: float) -> float:
     """First t in [t_min, t_max] where the ray meets the sea, or -1."""
-    low = scene.water_band[0]
-    high = scene.water_band[1]
+    # A centimetre of margin: a flat sea's band has no width, and rounding must not leave its plane outside.
+    low = scene.water_band[0] - BAND_MARGIN
+    high = scene.water_band[1] + BAND_MARGIN
     slope = scene.water_band[2]
     dz = direction[2]
     t_start = t_min
