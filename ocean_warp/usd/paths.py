@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["WORLD", "OCEAN", "FLEET", "ROUTE", "WAYPOINTS", "ROUTE_PATH", "WIND", "LOOKS", "CAMERA", "LIGHTS",
+__all__ = ["WORLD", "OCEAN", "FLEET", "ROUTE", "OBJECTS", "LIDAR", "WAYPOINTS", "ROUTE_PATH", "WIND", "LOOKS", "CAMERA", "LIGHTS",
            "SUN", "SKY", "LIBRARY", "BOAT_PROTOTYPE", "OCEAN_REST", "BOAT_COUNT_ATTRIBUTE", "WIND_DIRECTION_ATTRIBUTE",
            "WIND_SPEED_ATTRIBUTE", "ROUTE_INDICES_ATTRIBUTE", "boat_path"]
 
@@ -20,6 +20,11 @@ WAYPOINTS = "/World/Route/Waypoints"
 place, its display name the place's label(s), holding the buoy's mesh ``Buoy_<label>``."""
 ROUTE_PATH = "/World/Route/Path"
 """The mission path from the start through the waypoints (BasisCurves, linear)."""
+OBJECTS = "/World/Objects"
+"""The scene's objects (ocean_warp.perception.SceneObject): ``Object_000``... (an Xform each, a ``component``
+model, holding its mesh ``Shape``); a floating one's pose is time-sampled."""
+LIDAR = "/World/Lidar"
+"""Lidar returns (Points, time-sampled): every hit point of the recorded scans [m], world frame."""
 WIND = "/World/Wind"
 """The wind arrow (an Xform holding a Mesh, a ``component`` model), pointing where the wind blows towards."""
 LOOKS = "/World/Looks"

@@ -26,11 +26,13 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 
 import numpy as np
 from pxr import Sdf, Usd
 
 from ..ocean import Ocean
+from ..perception.scene import SceneObject
 from ..validation import require_int_in_range, require_positive
 from ..eboat.parts import eboat_parts
 from .boat_prototype import define_boat_prototype
@@ -39,6 +41,7 @@ from .markers import define_route, define_wind_arrow
 from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
 from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST
 from .stage_file import StageFile
+from .scene_prims import LidarPointsWriter, ObjectsWriter
 from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow, _require_loop
 from .view import define_camera, define_lights
 
@@ -147,6 +150,9 @@ class StageRecorder:
       the path from the start through them; None: no route.
     - ``wind``: a :class:`~ocean_warp.usd.stage_options.WindArrow`, the wind's direction and speed and
       where the arrow stands; None: no arrow.
+    - ``objects``: :class:`~ocean_warp.perception.SceneObject` s placed in the world (one environment), drawn
+      under ``/World/Objects``; the floating ones move with the poses given to :meth:`record`.
+    - ``lidar``: add ``/World/Lidar``, points time-sampled from :meth:`record`'s ``lidar_points``.
     - ``ascii``: text instead of crate (see ``path``); ``save_every``: frames between saves of a crate file.
 
     The stage also holds materials for every visible part (``ocean_warp.usd.materials``), a camera framing
@@ -159,8 +165,8 @@ class StageRecorder:
 
     def __init__(self, path, *, fps: float, time_codes_per_second: float = TIME_CODES_PER_SECOND,
                  ocean: OceanDrawing | None = None, fleet: FleetDrawing = FleetDrawing(),
-                 route: RouteDrawing | None = None, wind: WindArrow | None = None, ascii: bool | None = None,
-                 save_every: int = 100):
+                 route: RouteDrawing | None = None, wind: WindArrow | None = None, objects: Sequence = (),
+                 lidar: bool = False, ascii: bool | None = None, save_every: int = 100):
         owner = "StageRecorder"
         self.fps = require_positive(owner, "fps", fps, unit=" [frames/s]")
         self.time_codes_per_second = require_positive(owner, "time_codes_per_second", time_codes_per_second,
@@ -188,6 +194,11 @@ class StageRecorder:
         self._wind_origin = np.array(wind.origin, dtype=np.float64) if wind is not None and wind.origin is not None \
             else None
         save_every = require_int_in_range(owner, "save_every", save_every, 1, 10**9)
+        objects = list(objects)
+        if not all(isinstance(item, SceneObject) for item in objects):
+            raise ValueError(f"{owner}.objects must be ocean_warp.perception.SceneObjects")
+        if not isinstance(lidar, bool):
+            raise ValueError(f"{owner}.lidar must be True or False, got {lidar!r}")
 
         self._file = StageFile(path, time_codes_per_second=self.time_codes_per_second, ascii=ascii,
                                save_every=save_every, owner=owner)
@@ -204,6 +215,8 @@ class StageRecorder:
                 self._fleet = layout(stage, self.boats, prototype, parts)
             if self.route is not None:
                 define_route(stage, self.route, labels=self.route_labels, start=self.route_start)
+            self._objects = ObjectsWriter(stage, objects) if objects else None
+            self._lidar = LidarPointsWriter(stage) if lidar else None
         except BaseException:
             self._file.abort()
             raise
@@ -249,11 +262,15 @@ class StageRecorder:
         nearest = round(code)
         return float(nearest) if abs(code - nearest) < 1e-6 else code
 
-    def record(self, time_s: float, positions=None, orientations=None, boom_angles=None, rudder_angles=None) -> None:
+    def record(self, time_s: float, positions=None, orientations=None, boom_angles=None, rudder_angles=None, *,
+               object_poses=None, lidar_points=None) -> None:
         """Add the frame at time ``time_s`` [s] (later than the last one): the boats' positions (N, 3) [m],
         orientations (N, 4) (x, y, z, w, body -> world; normalised here), boom and rudder angles (N,) [rad]
         (positive to port; None: 0), and the ocean evaluated at ``time_s``. Boat arguments may be numpy
-        arrays, lists or torch tensors."""
+        arrays, lists or torch tensors. With ``objects``: ``object_poses`` = (positions (M, 3) [m],
+        orientations (M, 4)) of every object (``Scene.view.object_position`` / ``object_orientation``), of
+        which the floating ones are sampled (None: they stay where they were). With ``lidar``:
+        ``lidar_points`` (P, 3) [m], the frame's returns (NaN rows: no return)."""
         owner = "StageRecorder.record"
         if self._file.closed:
             raise ValueError(f"{owner}: the recorder is closed")
@@ -273,6 +290,13 @@ class StageRecorder:
             if boats is not None:
                 self._fleet.write(code, *boats)
                 self._track_visited(boats[0])
+            if object_poses is not None and self._objects is not None:
+                where, rotation = (np.asarray(v, dtype=np.float64) for v in object_poses)
+                self._objects.write(code, where, rotation)
+            if lidar_points is not None:
+                if self._lidar is None:
+                    raise ValueError(f"{owner}: lidar_points given, but the recorder was made without lidar=True")
+                self._lidar.write(code, lidar_points)
             self._file.frame_written()
         except BaseException:
             self.abort()

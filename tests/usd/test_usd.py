@@ -665,3 +665,41 @@ def test_crate_saved_while_recording_is_written_afresh_at_the_end(tmp_path, rng)
     stage = Usd.Stage.Open(str(path))
     translate = stage.GetPrimAtPath("/World/Fleet/Boat_0001").GetAttribute("xformOp:translate")
     np.testing.assert_allclose([translate.Get(0.5 * k * TCPS) for k in range(60)], positions[:, 1], atol=1e-12)
+
+
+def test_scene_objects_and_lidar_points_in_the_stage(tmp_path, rng):
+    """A fixed pile, a floating buoy whose pose is sampled per frame and lidar returns as time-sampled points
+    (rows of NaN left out); the stage validates."""
+    from ocean_warp.perception import SceneObject
+    from ocean_warp.usd.paths import LIDAR, OBJECTS
+
+    pile_xy = rng.uniform(-20.0, 20.0, size=2)
+    objects = [SceneObject.pillar(pile_xy, radius=0.7, height=5.0), SceneObject.buoy((3.0, 4.0), radius=0.4)]
+    path = tmp_path / "objects.usda"
+    frames = []
+    with StageRecorder(path, fps=2.0, objects=objects, lidar=True) as recorder:
+        for k in range(3):
+            poses = (np.array([[*pile_xy, 1.25], [3.0, 4.0, rng.uniform(-0.3, 0.3)]]),
+                     np.array([[0.0, 0.0, 0.0, 1.0], [0.0, 0.1 * k, 0.0, 1.0]]))
+            points = rng.uniform(-10.0, 10.0, size=(5, 3))
+            points[1] = np.nan
+            frames.append((poses, points))
+            recorder.record(k / 2.0, object_poses=poses, lidar_points=points)
+    stage = Usd.Stage.Open(str(path))
+    pile = UsdGeom.Xformable(stage.GetPrimAtPath(f"{OBJECTS}/Object_000"))
+    buoy = UsdGeom.Xformable(stage.GetPrimAtPath(f"{OBJECTS}/Object_001"))
+    np.testing.assert_allclose(pile.ComputeLocalToWorldTransform(0).ExtractTranslation(), [*pile_xy, 1.25], atol=1e-6)
+    assert not pile.GetOrderedXformOps()[0].GetAttr().GetTimeSamples()
+    tps = stage.GetTimeCodesPerSecond()
+    for k, ((where, _), points) in enumerate(frames):
+        code = k / 2.0 * tps
+        np.testing.assert_allclose(buoy.ComputeLocalToWorldTransform(code).ExtractTranslation(), where[1], atol=1e-6)
+        sampled = np.array(UsdGeom.Points(stage.GetPrimAtPath(LIDAR)).GetPointsAttr().Get(code))
+        np.testing.assert_allclose(sampled, np.delete(points, 1, axis=0), atol=1e-5)
+    assert stage.GetPrimAtPath(f"{OBJECTS}/Object_000/Shape").IsA(UsdGeom.Mesh)
+    assert validate_stage(path) == []
+    with pytest.raises(ValueError, match="made without lidar=True"):
+        with StageRecorder(tmp_path / "plain.usda", fps=2.0) as recorder:
+            recorder.record(0.0, lidar_points=np.zeros((1, 3)))
+    with pytest.raises(ValueError, match="StageRecorder.objects must be"):
+        StageRecorder(tmp_path / "bad.usda", fps=2.0, objects=["buoy"])
