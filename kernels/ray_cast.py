@@ -5,22 +5,24 @@ analytic; any other shape as a Warp mesh with its BVH, ``wp.mesh_query_ray``), t
 environment (the hull, keel and mast as one mesh in the body frame; the boom and sail as one mesh in
 the boom's pivot frame, turned by the boom angle) except the one the sensor rides on, and the sea.
 
-The sea is a height field over the periodic grid of ``ocean_surface`` (choppy displacement inverted as
-the hull pass does). The ray is marched only where it lies inside the band of heights the grid holds
-now (``SceneView.water_low`` .. ``water_high``, refreshed from the fields by :func:`water_band`), with
-steps that cannot jump over the surface for the steepest slope the grid holds, and the first crossing is
-refined by bisection. A ray that starts below the surface hits the water at once.
+The sea is a height map: the surface height above every node of the ocean's periodic grid, resampled
+when the scene is refreshed (:func:`resample_heights`; exactly the ocean's surface at the nodes, its
+choppy displacement included, and bilinear between them). A ray crosses the map cell by cell (a 2D DDA)
+within the band of heights the map holds (:func:`water_band`) and meets each cell's bilinear patch exactly
+(a quadratic along the ray): no march steps, no bisection. A ray that starts below every trough, or below
+the surface, meets the water at once. Its normal is the ocean's own at the hit.
 """
 
 from __future__ import annotations
 
 import warp as wp
 
-from .ocean_spectrum import FIELD_HEIGHT, FIELD_SLOPE
+from .ocean_spectrum import FIELD_HEIGHT
 from .ocean_surface import OceanSurface, surface_height, surface_normal, undisplaced_position
 
 __all__ = ["HIT_NONE", "HIT_WATER", "HIT_OBJECT", "HIT_BOAT", "SHAPE_SPHERE", "SHAPE_CYLINDER", "SHAPE_MESH",
-           "SceneView", "RayHit", "cast_ray", "cast_rays", "water_band", "float_objects"]
+           "SceneView", "RayHit", "cast_ray", "cast_rays", "resample_heights", "water_distance", "water_band",
+           "float_objects"]
 
 HIT_NONE = wp.constant(0)
 """Nothing within range."""
@@ -36,13 +38,8 @@ SHAPE_CYLINDER = wp.constant(1)
 SHAPE_MESH = wp.constant(2)
 """``mesh`` (a ``wp.Mesh`` id) in the object's frame."""
 
-MARCH_STEPS = wp.constant(512)
-"""Most steps of the march through the water band (a ray that needs more reports no water)."""
-BISECTIONS = wp.constant(12)
-MIN_STEP = wp.constant(0.02)
-"""Shortest march step [m]."""
-BAND_MARGIN = wp.constant(0.01)
-"""[m] added above and below the sea's height band."""
+MAX_CELLS = wp.constant(8192)
+"""Most grid cells a beam crosses within the water band (more than any range on any grid this project runs)."""
 
 
 @wp.struct
@@ -50,8 +47,11 @@ class SceneView:
     """What a ray sees, as the kernels read it (built by ``ocean_warp.perception.scene.Scene``)."""
 
     surface: OceanSurface
+    heights: wp.array2d(dtype=float)
+    """(n, n) the sea's height above every node of the ocean's grid [m] (:func:`resample_heights`): the
+    surface rays meet, bilinear between the nodes."""
     water_band: wp.array(dtype=float)
-    """(3,) lowest and highest surface height of the grid now [m], and its steepest slope (|grad h|)."""
+    """(2,) lowest and highest of ``heights`` [m] (:func:`water_band`)."""
     water_visible: int
     """1: rays see the sea; 0: they pass through it."""
     object_start: wp.array(dtype=int)
@@ -184,62 +184,151 @@ def _mesh_in_frame(mesh: wp.uint64, position: wp.vec3, orientation: wp.quat, ori
     return wp.vec4(-1.0, 0.0, 0.0, 0.0)
 
 
-@wp.func
-def _water_gap(surface: OceanSurface, point: wp.vec3) -> float:
-    """Height of ``point`` above the surface below it [m] (negative under water)."""
-    return point[2] - surface_height(surface, wp.vec2(point[0], point[1]))
+@wp.kernel(enable_backward=False)
+def resample_heights(surface: OceanSurface, heights: wp.array2d(dtype=float)):
+    """One thread per grid node (iy, ix): the surface height [m] above the node's world point
+    (ix, iy) x cell size, into ``heights`` [iy, ix] (the node's own height where there is no choppiness)."""
+    iy, ix = wp.tid()
+    if surface.choppiness == 0.0:
+        heights[iy, ix] = surface.fields[FIELD_HEIGHT, iy, ix][0]
+        return
+    cell = 1.0 / surface.inv_cell_size
+    heights[iy, ix] = surface_height(surface, wp.vec2(float(ix) * cell, float(iy) * cell))
 
 
 @wp.func
-def _march_water(scene: SceneView, origin: wp.vec3, direction: wp.vec3, t_min: float, t_max: float) -> float:
-    """First t in [t_min, t_max] where the ray meets the sea, or -1."""
-    # A centimetre of margin: a flat sea's band has no width, and rounding must not leave its plane outside.
-    low = scene.water_band[0] - BAND_MARGIN
-    high = scene.water_band[1] + BAND_MARGIN
-    slope = scene.water_band[2]
+def _first_root(a: float, b: float, c: float, length: float) -> float:
+    """The least s in [0, ``length``] with a s^2 + b s + c = 0, where c > 0; -1 if none."""
+    if a == 0.0:
+        if b >= 0.0:
+            return -1.0
+        s = -c / b
+        if s <= length:
+            return s
+        return -1.0
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:
+        return -1.0
+    root = wp.sqrt(disc)
+    q = -0.5 * (b - root)
+    if b >= 0.0:
+        q = -0.5 * (b + root)
+    # Both roots without cancellation: q / a and c / q (q is not 0: c > 0 and a != 0).
+    near = wp.min(q / a, c / q)
+    far = wp.max(q / a, c / q)
+    if near >= 0.0 and near <= length:
+        return near
+    if near < 0.0 and far >= 0.0 and far <= length:
+        return far
+    return -1.0
+
+
+@wp.func
+def _patch_crossing(heights: wp.array2d(dtype=float), mask: int, ix: int, iy: int, u0: float, v0: float,
+                    du: float, dv: float, z0: float, dz: float, length: float) -> float:
+    """First s in [0, ``length``] [m] where the beam, at grid coordinates (ix + u0 + du s, iy + v0 + dv s) and
+    height z0 + dz s [m], meets the bilinear patch of cell (ix, iy); -1 if it stays above it."""
+    x0 = ix & mask
+    y0 = iy & mask
+    x1 = (ix + 1) & mask
+    y1 = (iy + 1) & mask
+    h00 = heights[y0, x0]
+    h10 = heights[y0, x1]
+    h01 = heights[y1, x0]
+    h11 = heights[y1, x1]
+    if wp.min(z0, z0 + dz * length) > wp.max(wp.max(h00, h10), wp.max(h01, h11)):
+        return -1.0
+    along_u = h10 - h00
+    along_v = h01 - h00
+    twist = h00 - h10 - h01 + h11
+    # Height above the patch along the beam: (z0 - h(s)) + (dz - h'(0)) s - twist du dv s^2.
+    gap = z0 - (h00 + along_u * u0 + along_v * v0 + twist * u0 * v0)
+    if gap <= 0.0:
+        return 0.0
+    slope = dz - (along_u * du + along_v * dv + twist * (u0 * dv + v0 * du))
+    return _first_root(-twist * du * dv, slope, gap, length)
+
+
+@wp.func
+def _cell_boundary(start: float, grid: float, rate: float) -> wp.vec2:
+    """(distance [m] to the first grid line the beam crosses along one axis, distance between such lines);
+    1e30 for a beam that does not move along it. ``grid``: its grid coordinate at the start, ``rate``:
+    cells per metre of beam."""
+    if rate > 0.0:
+        return wp.vec2(start + (wp.floor(grid) + 1.0 - grid) / rate, 1.0 / rate)
+    if rate < 0.0:
+        return wp.vec2(start + (wp.floor(grid) - grid) / rate, -1.0 / rate)
+    return wp.vec2(1.0e30, 1.0e30)
+
+
+@wp.func
+def _cross_cells(heights: wp.array2d(dtype=float), surface: OceanSurface, origin: wp.vec3, direction: wp.vec3,
+                 t_start: float, t_end: float) -> float:
+    """First t in [t_start, t_end] [m] where the unit beam meets the height map, cell by cell; -1 if none."""
+    inv = surface.inv_cell_size
+    mask = surface.index_mask
+    du = direction[0] * inv
+    dv = direction[1] * inv
+    start = origin + t_start * direction
+    ix = int(wp.floor(start[0] * inv))
+    iy = int(wp.floor(start[1] * inv))
+    next_x = _cell_boundary(t_start, start[0] * inv, du)
+    next_y = _cell_boundary(t_start, start[1] * inv, dv)
+    step_x = int(wp.sign(du))
+    step_y = int(wp.sign(dv))
+    t = t_start
+    for _ in range(MAX_CELLS):
+        t_exit = wp.min(wp.min(next_x[0], next_y[0]), t_end)
+        entry = origin + t * direction
+        s = _patch_crossing(heights, mask, ix, iy, entry[0] * inv - float(ix), entry[1] * inv - float(iy), du, dv,
+                            entry[2], direction[2], t_exit - t)
+        if s >= 0.0:
+            return t + s
+        if t_exit >= t_end:
+            return -1.0
+        t = t_exit
+        if next_x[0] < next_y[0]:
+            ix = ix + step_x
+            next_x = wp.vec2(next_x[0] + next_x[1], next_x[1])
+        else:
+            iy = iy + step_y
+            next_y = wp.vec2(next_y[0] + next_y[1], next_y[1])
+    return -1.0
+
+
+@wp.func
+def water_distance(heights: wp.array2d(dtype=float), surface: OceanSurface, band: wp.array(dtype=float),
+                   origin: wp.vec3, direction: wp.vec3, t_min: float, t_max: float) -> float:
+    """First t in [t_min, t_max] [m] where the unit beam meets the sea's height map ``heights`` (on the grid
+    of ``surface``; its heights within ``band`` (low, high) [m]), or -1. Only the stretch of the beam
+    inside the band is crossed; a beam below every trough at t_min meets the water there, and one that
+    leaves the band through its bottom within range has met it by then (taken there if rounding hid the
+    crossing, as on a flat sea, where the band has no height)."""
+    low = band[0]
+    high = band[1]
     dz = direction[2]
     t_start = t_min
     t_end = t_max
+    sinks_under = False
     if wp.abs(dz) < 1.0e-9:
         if origin[2] < low:
-            return t_min  # level, below every trough: under water
+            return t_min
         if origin[2] > high:
             return -1.0
     else:
+        if origin[2] + t_min * dz < low:
+            return t_min
         t_high = (high - origin[2]) / dz
         t_low = (low - origin[2]) / dz
         t_start = wp.max(t_min, wp.min(t_high, t_low))
         t_end = wp.min(t_max, wp.max(t_high, t_low))
-        if origin[2] + t_min * dz < low:
-            return t_min  # starts below every trough: under water
+        sinks_under = dz < 0.0 and t_low <= t_max
     if t_start > t_end:
         return -1.0
-    # A gap g above the surface closes at most at (descent + slope x horizontal speed) per metre of ray.
-    horizontal = wp.sqrt(direction[0] * direction[0] + direction[1] * direction[1])
-    closing = wp.max(-dz, 0.0) + slope * horizontal + 1.0e-3
-    t = t_start
-    gap = _water_gap(scene.surface, origin + t * direction)
-    if gap <= 0.0:
-        return t
-    for _ in range(MARCH_STEPS):
-        step = wp.max(gap / closing, MIN_STEP)
-        t_next = wp.min(t + step, t_end)
-        gap_next = _water_gap(scene.surface, origin + t_next * direction)
-        if gap_next <= 0.0:
-            a = t
-            b = t_next
-            for _ in range(BISECTIONS):
-                middle = 0.5 * (a + b)
-                if _water_gap(scene.surface, origin + middle * direction) > 0.0:
-                    a = middle
-                else:
-                    b = middle
-            return 0.5 * (a + b)
-        if t_next >= t_end:
-            return -1.0
-        t = t_next
-        gap = gap_next
-    return -1.0
+    t = _cross_cells(heights, surface, origin, direction, t_start, t_end)
+    if t < 0.0 and sinks_under:
+        return t_end
+    return t
 
 
 @wp.func
@@ -308,7 +397,7 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
             hit.part = 1
             hit.normal = wp.vec3(found[1], found[2], found[3])
     if scene.water_visible != 0:
-        t = _march_water(scene, origin, direction, t_min, hit.t)
+        t = water_distance(scene.heights, scene.surface, scene.water_band, origin, direction, t_min, hit.t)
         if t >= 0.0 and (t < hit.t or hit.kind == HIT_NONE):
             hit.t = t
             hit.kind = HIT_WATER
@@ -320,24 +409,18 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
 
 
 @wp.kernel(enable_backward=False)
-def water_band(surface: OceanSurface, band: wp.array(dtype=float)):
-    """One thread a grid row: the lowest and highest node height and the steepest slope into ``band``
-    (which must hold (+inf, -inf, 0) before the launch). Heights between nodes are bilinear, so they lie in
-    the band; the choppy displacement moves the nodes sideways only."""
+def water_band(heights: wp.array2d(dtype=float), band: wp.array(dtype=float)):
+    """One thread a grid row: the lowest and highest height of the map into ``band`` (which must hold
+    (+inf, -inf) before the launch). Heights between nodes are bilinear, so they lie in the band."""
     row = wp.tid()
-    n = surface.index_mask + 1
     low = float(1.0e30)
     high = float(-1.0e30)
-    steepest = float(0.0)
-    for column in range(n):
-        height = surface.fields[FIELD_HEIGHT, row, column][0]
-        slope = surface.fields[FIELD_SLOPE, row, column]
+    for column in range(heights.shape[1]):
+        height = heights[row, column]
         low = wp.min(low, height)
         high = wp.max(high, height)
-        steepest = wp.max(steepest, wp.length(wp.vec2(slope[0], slope[1])))
     wp.atomic_min(band, 0, low)
     wp.atomic_max(band, 1, high)
-    wp.atomic_max(band, 2, steepest)
 
 
 @wp.kernel(enable_backward=False)

@@ -16,6 +16,8 @@ JOBS = {
              "(--task ID: any registered task; default the BCDACA mission, 20 runs)"),
     "export-usd": ("ocean_warp.envs.apps.usd_export", "record a scenario (boats, sea, wind, controller, duration) to a "
                    "USD stage"),
+    "render": ("ocean_warp.envs.apps.render", "a video (MP4 or GIF) of a fleet's run, ray-traced from a chase or fixed "
+               "camera"),
 }
 
 

@@ -30,6 +30,7 @@ from ..kernels.ray_cast import (
     SceneView,
     cast_rays,
     float_objects,
+    resample_heights,
     water_band,
 )
 from ..meshes import MeshData, concatenate
@@ -176,6 +177,8 @@ class Scene:
             raise ValueError(f"Scene.origins must be ({envs}, 3) finite [m], got shape {origins.shape}")
         per_env = _objects_per_env(objects, envs)
         self.objects = per_env
+        self.boat_env = boat_env.copy()
+        """(B,) int64 numpy: the environment each boat is drawn in (-1: not drawn)."""
 
         parts = eboat_parts(boat if boat is not None else EBoatConfig(), hull_detail=1)
         body, boom = concatenate(parts.hull, parts.keel, parts.mast), concatenate(parts.spar, parts.sail)
@@ -216,10 +219,14 @@ class Scene:
         self.anchor = array(anchor, wp.vec3)
         """(M,) where each object stands, world frame [m] (a floating one's x, y)."""
         self._floats, self._draft = array(rows["floats"], int), array(rows["draft"], float)
-        self.band = wp.zeros(3, dtype=float, device=device)
-        """(3,) the sea's lowest and highest height now and its steepest slope (see ``ray_cast.water_band``)."""
+        grid = ocean.config.resolution
+        self.heights = wp.zeros((grid, grid), dtype=float, device=device)
+        """(n, n) the sea's height above every grid node at the last :meth:`refresh` [m]."""
+        self.band = wp.zeros(2, dtype=float, device=device)
+        """(2,) the lowest and highest of ``heights`` [m] (see ``ray_cast.water_band``)."""
         self.view = struct_from(
-            SceneView, surface=ocean.surface, water_band=self.band, water_visible=int(water_visible),
+            SceneView, surface=ocean.surface, heights=self.heights, water_band=self.band,
+            water_visible=int(water_visible),
             object_start=array(starts, int), object_shape=array(rows["shape"], int),
             object_position=array(anchor, wp.vec3), object_orientation=array(quats, wp.quat),
             object_size=array(rows["size"], wp.vec3), object_mesh=array(rows["mesh"], wp.uint64),
@@ -229,7 +236,7 @@ class Scene:
             body_mesh=self._meshes[0].id, boom_mesh=self._meshes[1].id, boom_pivot=wp.vec3(*parts.boom_pivot),
             boat_bound=boat_bound)
         """What the kernels take (:class:`~ocean_warp.kernels.ray_cast.SceneView`)."""
-        self._band_start = array(np.array([1.0e30, -1.0e30, 0.0], np.float32), float)
+        self._band_start = array(np.array([1.0e30, -1.0e30], np.float32), float)
         self.object_count = len(flat)
         self.refresh()
 
@@ -253,11 +260,13 @@ class Scene:
 
     # --- per frame ----------------------------------------------------------------------------------
     def refresh(self) -> None:
-        """The sea's height band and slope from its current fields, and the floating objects on it. Launches
+        """The sea's height map and band from its current fields, and the floating objects on it. Launches
         only (graph-safe): call it after the ocean's fields change, before casting."""
         device = self.device
+        wp.launch(resample_heights, dim=self.heights.shape, device=device, inputs=[self.ocean.surface],
+                  outputs=[self.heights])
         wp.copy(self.band, self._band_start)
-        wp.launch(water_band, dim=self.ocean.config.resolution, device=device, inputs=[self.ocean.surface, self.band])
+        wp.launch(water_band, dim=self.heights.shape[0], device=device, inputs=[self.heights, self.band])
         if self.object_count:
             wp.launch(float_objects, dim=self.object_count, device=device,
                       inputs=[self.ocean.surface, self._floats, self._draft, self.anchor],

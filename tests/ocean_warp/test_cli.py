@@ -57,7 +57,7 @@ def test_every_job_says_its_name_and_its_defaults(job, monkeypatch, capsys):
     ("ocean", "--resolution", "(default: 256)"), ("polar", "--angle-step", "(default: 15.0)"),
     ("polar", "--wind-speeds", "(default: 4 7 10)"), ("drop-hulls", "--boats-per-shape", "(default: 8)"),
     ("train", "--seed", "(default: 0)"), ("eval", "--runs", "(default 20)"), ("demo", "--boats", "(default: 16)"),
-    ("export-usd", "--playback-fps", "(default: 24.0)"),
+    ("export-usd", "--playback-fps", "(default: 24.0)"), ("render", "--fps", "(default: 10)"),
 ])
 def test_help_shows_the_default(job, option, shown, capsys):
     with pytest.raises(SystemExit) as exit_info:
@@ -95,10 +95,11 @@ BAD_VALUES = [
     (["train", "--num-envs", "0"], "--num-envs must be a whole number >= 1, got 0"),
     (["train", "--iterations", "-2"], "--iterations must be a whole number >= 1, got -2"),
     (["eval", "--runs", "0"], "--runs must be a whole number >= 1, got 0"),
+    (["render", "--width", "0"], "RenderConfig.width must be an integer in [2, 8192], got 0"),
 ] + [([job, "--device", "tpu"], "--device must be \"cpu\", \"cuda\" (the first GPU) or \"cuda:N\", got 'tpu'")
-     for job in ("ocean", "polar", "drop-hulls", "train", "eval", "demo")] + [
+     for job in ("ocean", "polar", "drop-hulls", "train", "eval", "demo", "render")] + [
     ([job, "--device", "cuda:99"], "--device 'cuda:99': ") for job in ("ocean", "polar", "drop-hulls", "train",
-                                                                      "eval", "demo")]
+                                                                      "eval", "demo", "render")]
 
 
 @pytest.mark.parametrize("argv, message", BAD_VALUES)
@@ -115,7 +116,7 @@ def test_bad_values_are_one_line_errors(argv, message, tmp_path, capsys):
 
 
 @pytest.mark.skipif(HAS_GPU, reason="needs a machine without a GPU")
-@pytest.mark.parametrize("job", ["ocean", "polar", "drop-hulls", "train", "eval", "demo"])
+@pytest.mark.parametrize("job", ["ocean", "polar", "drop-hulls", "train", "eval", "demo", "render"])
 def test_cuda_without_a_gpu_is_a_one_line_error(job, capsys):
     with pytest.raises(SystemExit) as exit_info:
         cli.main([job, "--device", "cuda"])

@@ -1,0 +1,407 @@
+"""``ocean-warp render``: a video of a fleet's run, rendered with the perception ray tracer (the camera's shading:
+sky, water with Fresnel reflections, lit boats and buoys), on the CPU or a GPU.
+
+    ocean-warp render --out out/fleet.mp4                               # the demo's fleet, chase camera
+    ocean-warp render --out out/fleet.gif --width 480 --height 270 --duration 10 --camera fixed
+    ocean-warp render --autopilot --boats 4 --device cuda:0 --out out/autopilot.mp4
+    ocean-warp render --policy out/train/policy.pt --out out/policy.mp4
+
+The run is the demo's: the fleet on the BCDACA course in a JONSWAP sea, the first --policy-share of the
+boats sailed by the shipped mission policy and the rest by the classical autopilot (or every boat by
+--policy FILE, or by the --autopilot), every boat on the same water; the route's waypoints float as buoys.
+The camera is --camera chase (astern of and above the fleet's first boat, following it smoothly) or
+fixed (a point south of the course overlooking all of it).
+
+Frames are taken at --fps frames per second of simulated time, inside each decision of 1 s: after every
+20 / fps of its 20 physics steps of 0.05 s, so --fps must divide 20 (1, 2, 4, 5, 10 or 20). The video
+plays at --fps, in real time, and holds --duration x --fps frames (--duration rounded to whole seconds;
+fewer frames if every boat's run ends first). The file is --out: .mp4 (H.264, through imageio-ffmpeg:
+``pip install "ocean-warp[video]"``; even --width and --height) or .gif (Pillow; every frame is held in
+memory until the end, a byte a pixel: keep GIFs small). It is written to a temporary file beside --out and
+renamed onto it when complete, so a failed or interrupted run leaves no file behind.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import dataclasses
+import importlib.util
+import math
+import os
+import sys
+import time
+
+import numpy as np
+import warp as wp
+
+from ocean_warp.atomic_files import atomic_output
+from ocean_warp.cli_support import add_device_argument, checked_device, job_parser, made_folder, plural, report_error
+from ocean_warp.perception.camera import ViewCamera
+from ocean_warp.perception.scene import Scene, SceneObject
+from ocean_warp.kernels.camera_render import follow_boat
+from ocean_warp.validation import require_in_range, require_int_in_range
+
+from ..sailing_env import DecisionHook, SailingEnv
+from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission
+from .fleet_scenario import HULLS, FleetScenario
+from ..training.policies import shipped_policy_path
+from ..training.policy_io import load_policy
+
+__all__ = ["RenderConfig", "RenderResult", "FrameHook", "fleet_controller", "chase_camera", "render_run", "route_buoys",
+           "overlook", "video_path_problem", "main"]
+
+CAMERAS = ("chase", "fixed")
+VIDEO_SUFFIXES = (".mp4", ".gif")
+MP4_HINT = 'MP4 needs imageio-ffmpeg: pip install "ocean-warp[video]", or write a .gif'
+
+CHASE_BEHIND = 14.0
+"""Chase camera: distance astern of the boat [m]."""
+CHASE_ABOVE = 5.0
+"""Chase camera: height over the boat [m]."""
+CHASE_AHEAD = 6.0
+"""Chase camera: it looks at a point this far before the boat, 1 m up [m]."""
+CHASE_TIME_CONSTANT = 1.5
+"""Chase camera: it closes 63 % of the way to where it should be in this time [s] (smooths the boat's
+yawing and pitching)."""
+BUOY_RADIUS = 0.75
+"""[m]"""
+BUOY_COLOR = (0.95, 0.72, 0.05)
+VIEW_RANGE = 2000.0
+"""The video camera's range [m]; the haze hides its end."""
+HAZE_DISTANCE = 500.0
+"""[m]"""
+
+
+@dataclasses.dataclass(frozen=True)
+class RenderConfig(FleetScenario):
+    """The run to render and the video (see :class:`FleetScenario` for the fleet and its sea;
+    ``frames_per_second`` is the video's)."""
+
+    boats: int = 8
+    frames_per_second: int = 10
+    duration: float = 30.0
+    """Simulated time [s], rounded to whole decisions of 1 s."""
+    width: int = 1280
+    """[px]"""
+    height: int = 720
+    """[px]"""
+    field_of_view: float = 60.0
+    """Horizontal [deg]."""
+    camera: str = "chase"
+    """One of :data:`CAMERAS`."""
+    policy: str | None = None
+    """A policy checkpoint that sails every boat (None: the demo's mix, or the autopilot)."""
+    autopilot: bool = False
+    """The autopilot sails every boat."""
+    policy_share: float = 0.5
+    """The demo's mix: the first share of the boats sail the shipped policy, the rest the autopilot."""
+
+    def __post_init__(self):
+        super().__post_init__()
+        owner = "RenderConfig"
+        require_in_range(owner, "duration", self.duration, 1.0, 10**6)
+        require_int_in_range(owner, "width", self.width, 2, 8192)
+        require_int_in_range(owner, "height", self.height, 2, 8192)
+        fov = require_in_range(owner, "field_of_view", self.field_of_view, 0.0, 180.0, unit=" [deg]")
+        if not 0.0 < fov < 180.0:
+            raise ValueError(f"{owner}.field_of_view must be in (0, 180) [deg], got {self.field_of_view!r}")
+        if self.camera not in CAMERAS:
+            raise ValueError(f"{owner}.camera must be one of {', '.join(CAMERAS)}, got {self.camera!r}")
+        if not isinstance(self.autopilot, bool):
+            raise ValueError(f"{owner}.autopilot must be True or False, got {self.autopilot!r}")
+        if self.autopilot and self.policy is not None:
+            raise ValueError(f"{owner}: autopilot and policy contradict each other (each sails every boat)")
+        require_in_range(owner, "policy_share", self.policy_share, 0.0, 1.0)
+
+    @property
+    def decisions(self) -> int:
+        """Decisions of 1 s the run lasts."""
+        return max(1, int(round(self.duration)))
+
+    @property
+    def frames(self) -> int:
+        """Frames the video holds when no run ends early."""
+        return self.decisions * self.frames_per_second
+
+
+@dataclasses.dataclass
+class RenderResult:
+    """What :func:`render_run` wrote and how long it took."""
+
+    path: str
+    frames: int
+    wall_s: float
+    """Wall time of the run [s]: physics, rendering and encoding (start-up not)."""
+
+    @property
+    def seconds_per_frame(self) -> float:
+        return self.wall_s / self.frames if self.frames else math.nan
+
+
+def fleet_controller(config: RenderConfig, boats: int):
+    """Who sails: the policy at ``config.policy`` (every boat), the autopilot (every boat), or the demo's
+    mix of the shipped mission policy and the autopilot."""
+    if config.policy is not None:
+        return PolicyController(load_policy(config.policy))
+    if config.autopilot:
+        return AutopilotController()
+    policy_boats = np.arange(boats) < int(round(config.policy_share * boats))
+    groups = []
+    if policy_boats.any():
+        groups.append((PolicyController(load_policy(shipped_policy_path("EBoatMission-v0"))), policy_boats))
+    if not policy_boats.all():
+        groups.append((AutopilotController(), ~policy_boats))
+    return FleetController(groups, name="fleet")
+
+
+def _course_points(task) -> np.ndarray:
+    """(K, 2) the start and every distinct waypoint of the task's route [m]."""
+    points = [tuple(task.start_point)] + [tuple(point) for point in task.route]
+    return np.unique(np.round(np.array(points, dtype=np.float64), 6), axis=0)
+
+
+def route_buoys(task) -> list[SceneObject]:
+    """A floating buoy on the start and each waypoint of ``task``'s route."""
+    return [SceneObject.buoy(point, radius=BUOY_RADIUS, color=BUOY_COLOR) for point in _course_points(task)]
+
+
+def overlook(task) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """(eye, target) [m] of the fixed camera: south of the course, high enough to see all of it with a
+    60 degree field of view, looking at its centre."""
+    points = _course_points(task)
+    low, high = points.min(axis=0), points.max(axis=0)
+    centre = 0.5 * (low + high)
+    reach = float(np.max(high - low)) * 0.5 + 20.0
+    eye = (float(centre[0]), float(centre[1] - 1.6 * reach), 0.6 * reach)
+    return eye, (float(centre[0]), float(centre[1]), 0.0)
+
+
+class FrameHook(DecisionHook):
+    """Renders ``frames_per_decision`` frames of ``view`` inside every decision (after physics steps S/F,
+    2 S/F, ..., S) into :attr:`frames`; before each it refreshes the scene and lets ``aim`` (launches, or
+    None) move the camera. Launches only: part of the decision's graph."""
+
+    def __init__(self, env: SailingEnv, view: ViewCamera, frames_per_decision: int, aim=None):
+        steps = env.steps_per_decision
+        if steps % frames_per_decision:
+            raise ValueError(f"FrameHook: frames_per_decision must divide the {steps} physics steps of a decision, "
+                             f"got {frames_per_decision}")
+        self.view, self.aim = view, aim
+        self.every = steps // frames_per_decision
+        config = view.config
+        self.frames = wp.zeros((frames_per_decision, config.height, config.width, 3), dtype=wp.uint8,
+                               device=view.device)
+        """(F, H, W, 3) uint8 sRGB: the last decision's frames."""
+        self._pixels = config.height * config.width * 3
+
+    def after_physics_step(self, env: SailingEnv, step: int) -> None:
+        if (step + 1) % self.every:
+            return
+        self.view.scene.refresh()
+        if self.aim is not None:
+            self.aim()
+        self.view.render()
+        slot = (step + 1) // self.every - 1
+        wp.copy(self.frames, self.view.rgb_array, dest_offset=slot * self._pixels, count=self._pixels)
+
+
+def chase_camera(env: SailingEnv, view: ViewCamera, frame_period: float):
+    """A function that launches the chase camera's move (``camera_render.follow_boat``): ``view`` after the
+    fleet's first boat, smoothed over :data:`CHASE_TIME_CONSTANT` at one call every ``frame_period`` [s]."""
+    state, primed = env.simulator.state, wp.zeros(1, dtype=int, device=view.device)
+    smoothing = 1.0 - math.exp(-frame_period / CHASE_TIME_CONSTANT)
+
+    def aim() -> None:
+        wp.launch(follow_boat, dim=1, device=view.device,
+                  inputs=[state.position, state.orientation, 0, CHASE_BEHIND, CHASE_ABOVE, CHASE_AHEAD, smoothing,
+                          primed], outputs=[view.eye, view.target])
+
+    return aim
+
+
+class _Mp4Writer:
+    """H.264 frames into an MP4 through imageio-ffmpeg."""
+
+    def __init__(self, path: str, width: int, height: int, fps: int):
+        import imageio_ffmpeg
+
+        self._frames = imageio_ffmpeg.write_frames(path, (width, height), fps=fps, codec="libx264", quality=8,
+                                                   macro_block_size=2, ffmpeg_log_level="error")
+        self._frames.send(None)
+
+    def write(self, frame: np.ndarray) -> None:
+        self._frames.send(np.ascontiguousarray(frame))
+
+    def close(self) -> None:
+        self._frames.close()
+
+    abort = close
+    """ffmpeg stops either way; the caller removes the file."""
+
+
+class _GifWriter:
+    """Frames (each to its own 256-colour palette) held until :meth:`close` writes the looping GIF."""
+
+    def __init__(self, path: str, width: int, height: int, fps: int):
+        self.path, self.fps, self._frames = path, fps, []
+
+    def write(self, frame: np.ndarray) -> None:
+        from PIL import Image
+
+        self._frames.append(Image.fromarray(frame).quantize(256))
+
+    def close(self) -> None:
+        if self._frames:
+            first, *rest = self._frames
+            first.save(self.path, save_all=True, append_images=rest, duration=1000.0 / self.fps, loop=0)
+        self._frames = []
+
+    def abort(self) -> None:
+        self._frames = []
+
+
+@contextlib.contextmanager
+def _video(path: str, width: int, height: int, fps: int):
+    """A writer of ``path`` (its suffix picks MP4 or GIF), written atomically: the file appears when the block
+    ends without an error; on an error nothing is left."""
+    writer_type = _Mp4Writer if path.lower().endswith(".mp4") else _GifWriter
+    with atomic_output(path) as temporary:
+        writer = writer_type(temporary, width, height, fps)
+        try:
+            yield writer
+        except BaseException:
+            writer.abort()
+            raise
+        writer.close()
+
+
+def render_run(config: RenderConfig, out: str | os.PathLike, *, device: str = "cpu", progress: bool = True,
+               controller=None) -> RenderResult:
+    """Sail ``config``'s run and write its video to ``out`` (.mp4 or .gif); ``controller``: who sails (None:
+    :func:`fleet_controller`)."""
+    from tqdm import tqdm
+
+    out = os.fspath(out)
+    task = config.task(time_limit=float(config.decisions), loop_period=None, device=device)
+    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
+    controller = fleet_controller(config, config.boats) if controller is None else controller
+    scene = Scene.for_simulator(env.simulator, route_buoys(task))
+    view = ViewCamera(scene, config.width, config.height, math.radians(config.field_of_view), max_range=VIEW_RANGE,
+                      haze_distance=HAZE_DISTANCE)
+    per_decision = int(round(config.frames_per_second * env.decision_period))
+    if config.camera == "fixed":
+        view.look_at(*overlook(task))
+        hook = FrameHook(env, view, per_decision)
+    else:
+        hook = FrameHook(env, view, per_decision, chase_camera(env, view, env.decision_period / per_decision))
+    env.attach(hook)
+    written = [0]
+    started = time.perf_counter()
+    with _video(out, config.width, config.height, config.frames_per_second) as video, \
+            tqdm(total=config.frames, desc="render", unit="frame", disable=not progress, dynamic_ncols=True) as bar:
+        def write_frames(k: int, decision) -> None:
+            for frame in hook.frames.numpy():
+                video.write(frame)
+            written[0] += per_decision
+            bar.update(per_decision)
+
+        sail_mission(env, controller, frames_per_decision=per_decision, on_decision=write_frames)
+    return RenderResult(path=out, frames=written[0], wall_s=time.perf_counter() - started)
+
+
+def video_path_problem(out: str) -> str | None:
+    """What makes ``out`` unusable as --out before anything runs (a folder, a wrong suffix, MP4 without
+    imageio-ffmpeg), in words; None when nothing does. Whether its folder can be made is checked by making it."""
+    if os.path.isdir(out):
+        return f"--out {out!r} is a folder: give a file name ending in {' or '.join(VIDEO_SUFFIXES)}"
+    suffix = os.path.splitext(out)[1].lower()
+    if suffix not in VIDEO_SUFFIXES:
+        return f"--out must end in {' or '.join(VIDEO_SUFFIXES)}, got {out!r}"
+    if suffix == ".mp4":
+        if importlib.util.find_spec("imageio_ffmpeg") is None:
+            return f"--out {out!r}: {MP4_HINT}"
+    return None
+
+
+def _output_folder(parser: argparse.ArgumentParser, out: str) -> None:
+    """Make --out's folder if it is missing (:func:`made_folder`), and exit with status 2 where it cannot be
+    made or written in."""
+    folder = made_folder(parser, os.path.dirname(os.path.abspath(out)))
+    if not os.access(folder, os.W_OK | os.X_OK):
+        report_error(parser.prog, f"--out {out!r}: cannot write in the folder {folder!r}")
+        parser.exit(2)
+
+
+def _parser() -> argparse.ArgumentParser:
+    d = RenderConfig()
+    parser = job_parser("render", __doc__, raw_description=True)
+    parser.add_argument("--out", default="out/render.mp4", help="the video: .mp4 or .gif")
+    parser.add_argument("--duration", type=float, default=d.duration, metavar="SECONDS",
+                        help="simulated time [s], whole seconds")
+    parser.add_argument("--width", type=int, default=d.width, help="[px]")
+    parser.add_argument("--height", type=int, default=d.height, help="[px]")
+    parser.add_argument("--fps", type=int, default=d.frames_per_second,
+                        help="frames per simulated second, played in real time (1, 2, 4, 5, 10 or 20)")
+    parser.add_argument("--camera", choices=CAMERAS, default=d.camera,
+                        help="chase: astern of and above the first boat; fixed: overlooking the course")
+    parser.add_argument("--fov", type=float, default=d.field_of_view, metavar="DEGREES",
+                        help="horizontal field of view [deg]")
+    who = parser.add_mutually_exclusive_group()
+    who.add_argument("--policy", default=None, metavar="FILE", help="a policy checkpoint sails every boat")
+    who.add_argument("--autopilot", action="store_true", help="the autopilot sails every boat")
+    parser.add_argument("--policy-share", type=float, default=d.policy_share,
+                        help="without --policy or --autopilot: the share of boats the shipped policy sails, the "
+                        "rest the autopilot (the demo's fleet)")
+    parser.add_argument("--boats", type=int, default=d.boats, help="boats in the fleet")
+    parser.add_argument("--sea-state", type=float, default=d.sea_state, metavar="HS",
+                        help="significant wave height of the JONSWAP sea [m]")
+    parser.add_argument("--wind", type=float, default=d.wind, help="mean true wind speed [m/s]")
+    parser.add_argument("--seed", type=int, default=d.seed, help="seed of sea, gusts and starts")
+    parser.add_argument("--hull", choices=HULLS, default=d.hull,
+                        help="mesh: per-triangle pressure; points: the seed's four-point buoyancy; auto: points on "
+                        "the CPU, mesh on a GPU")
+    add_device_argument(parser)
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``ocean-warp render``; returns the exit code (2 for a bad option or an unusable --out,
+    1 when the run or the encoding fails)."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    try:
+        config = RenderConfig(boats=args.boats, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
+                              hull=args.hull, frames_per_second=args.fps, duration=args.duration, width=args.width,
+                              height=args.height, field_of_view=args.fov, camera=args.camera, policy=args.policy,
+                              autopilot=args.autopilot, policy_share=args.policy_share)
+    except ValueError as error:
+        return report_error(parser.prog, str(error))
+    device = checked_device(parser, args.device)
+    problem = video_path_problem(args.out)
+    if problem is None and args.out.lower().endswith(".mp4") and (config.width % 2 or config.height % 2):
+        problem = f"--width and --height must be even for MP4 (H.264 4:2:0), got {config.width} x {config.height}"
+    if problem is not None:
+        return report_error(parser.prog, problem)
+    try:
+        controller = fleet_controller(config, config.boats)
+    except (ValueError, FileNotFoundError) as error:  # an unusable policy checkpoint, or none shipped
+        return report_error(parser.prog, str(error))
+    _output_folder(parser, args.out)
+    try:
+        result = render_run(config, args.out, device=device, progress=not args.no_progress, controller=controller)
+    except ValueError as error:  # a policy that cannot sail this run
+        return report_error(parser.prog, str(error))
+    except OSError as error:  # the video could not be written
+        print(f"{parser.prog}: {error}", file=sys.stderr)
+        return 1
+    print(f"{plural(result.frames, 'frame')} of {config.width} x {config.height} ({plural(config.boats, 'boat')}, "
+          f"{config.camera} camera, device {device}) in {result.wall_s:.1f} s: "
+          f"{1e3 * result.seconds_per_frame:.0f} ms a frame with the physics and the encoding")
+    print(f"wrote {result.path} ({os.path.getsize(result.path) / 2**20:.2f} MiB)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
