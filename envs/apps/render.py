@@ -393,8 +393,9 @@ def main(argv: list[str] | None = None) -> int:
         result = render_run(config, args.out, device=device, progress=not args.no_progress, controller=controller)
     except ValueError as error:  # a policy that cannot sail this run
         return report_error(parser.prog, str(error))
-    except OSError as error:  # the video could not be written
-        print(f"{parser.prog}: {error}", file=sys.stderr)
+    except OSError as error:  # the video could not be written (the temporary file is gone: see render_run)
+        reason = error.strerror or str(error)
+        print(f"{parser.prog}: error: cannot write --out {args.out!r}: {reason}", file=sys.stderr)
         return 1
     print(f"{plural(result.frames, 'frame')} of {config.width} x {config.height} ({plural(config.boats, 'boat')}, "
           f"{config.camera} camera, device {device}) in {result.wall_s:.1f} s: "
