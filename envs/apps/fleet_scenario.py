@@ -96,9 +96,9 @@ def fleet_course_task(*, sea_state: float, wind: float, seed: int, time_limit: f
     return dataclasses.replace(task, simulator=simulator, ocean_spacing=False)
 
 
-def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScenario) -> None:
-    """The command-line options of :class:`FleetScenario`'s fields, with ``defaults``' values, and the
-    options every fleet command has: ``--device`` and ``--no-progress``."""
+def add_sailing_arguments(parser: argparse.ArgumentParser, defaults) -> None:
+    """The options of the fleet's run every fleet command has: ``--boats``, ``--sea-state``, ``--wind``,
+    ``--seed`` and ``--hull``, with ``defaults``' values (an object with those fields)."""
     parser.add_argument("--boats", type=int, default=defaults.boats, help="boats in the fleet")
     parser.add_argument("--sea-state", type=float, default=defaults.sea_state, metavar="HS",
                         help="significant wave height of the JONSWAP sea [m]")
@@ -107,6 +107,12 @@ def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScena
     parser.add_argument("--hull", choices=HULLS, default=defaults.hull,
                         help="mesh: per-triangle pressure; points: the seed's four-point buoyancy; auto: points on "
                         "the CPU, mesh on a GPU")
+
+
+def add_scenario_arguments(parser: argparse.ArgumentParser, defaults: FleetScenario) -> None:
+    """The command-line options of :class:`FleetScenario`'s fields, with ``defaults``' values, and the
+    options every fleet command has: ``--device`` and ``--no-progress``."""
+    add_sailing_arguments(parser, defaults)
     parser.add_argument("--fps", type=int, default=defaults.frames_per_second,
                         help="USD frames per simulated second (1, 2, 4, 5, 10 or 20)")
     parser.add_argument("--ocean-resolution", type=int, default=defaults.ocean_resolution,

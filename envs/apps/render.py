@@ -44,7 +44,7 @@ from ocean_warp.validation import require_in_range, require_int_in_range
 
 from ..sailing_env import DecisionHook, SailingEnv
 from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission
-from .fleet_scenario import HULLS, FleetScenario
+from .fleet_scenario import FleetScenario, add_sailing_arguments
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import load_policy
 
@@ -353,14 +353,7 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--policy-share", type=float, default=d.policy_share,
                         help="without --policy or --autopilot: the share of boats the shipped policy sails, the "
                         "rest the autopilot (the demo's fleet)")
-    parser.add_argument("--boats", type=int, default=d.boats, help="boats in the fleet")
-    parser.add_argument("--sea-state", type=float, default=d.sea_state, metavar="HS",
-                        help="significant wave height of the JONSWAP sea [m]")
-    parser.add_argument("--wind", type=float, default=d.wind, help="mean true wind speed [m/s]")
-    parser.add_argument("--seed", type=int, default=d.seed, help="seed of sea, gusts and starts")
-    parser.add_argument("--hull", choices=HULLS, default=d.hull,
-                        help="mesh: per-triangle pressure; points: the seed's four-point buoyancy; auto: points on "
-                        "the CPU, mesh on a GPU")
+    add_sailing_arguments(parser, d)
     add_device_argument(parser)
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
