@@ -372,9 +372,10 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:
         return report_error(parser.prog, str(error))
     device = checked_device(parser, args.device)
-    problem = video_path_problem(args.out)
-    if problem is None and args.out.lower().endswith(".mp4") and (config.width % 2 or config.height % 2):
+    problem = None
+    if args.out.lower().endswith(".mp4") and (config.width % 2 or config.height % 2):  # a value, before the setup
         problem = f"--width and --height must be even for MP4 (H.264 4:2:0), got {config.width} x {config.height}"
+    problem = problem or video_path_problem(args.out)
     if problem is not None:
         return report_error(parser.prog, problem)
     try:
