@@ -149,7 +149,8 @@ def episode_log(b: EnvBuffers) -> dict[str, torch.Tensor]:
         "/episode/time_out_rate": b.time_out.index_select(0, ended).float(),
     }
     for name, bit in (("capsized", BoatStatus.CAPSIZED), ("nonfinite", BoatStatus.NONFINITE),
-                      ("sunk", BoatStatus.SUNK), ("flying", BoatStatus.FLYING), ("bad_input", BoatStatus.BAD_INPUT)):
+                      ("sunk", BoatStatus.SUNK), ("flying", BoatStatus.FLYING), ("bad_input", BoatStatus.BAD_INPUT),
+                      ("collided", BoatStatus.COLLIDED)):
         log[f"/episode/{name}_rate"] = ((status & bit) != 0).float()
     log["/episode/ended"] = ended.numel() * torch.ones((), device=b.done.device)
     return log

@@ -212,6 +212,13 @@ class SailingEnv:
     def _launch_decision(self) -> None:
         self.launch_decision()
 
+    def add_force_model(self, model) -> None:
+        """Add a force model to the simulator (``Simulator.add_model``: e.g. ``ocean_warp.contact.Contact``); the
+        decision's graph is captured anew at the next step."""
+        self.simulator.simulator.add_model(model)
+        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
+                                                   capture=self.task.simulator.capture_graph)
+
     def attach(self, hook: DecisionHook) -> None:
         """Run ``hook``'s launches inside every :meth:`step` from now on (a sensor that scans during the
         decision, a recorder); hooks run in the order attached. The decision's graph is captured anew at the

@@ -32,6 +32,7 @@ __all__ = [
     "STATUS_FLYING",
     "STATUS_SUNK",
     "STATUS_BAD_INPUT",
+    "STATUS_COLLIDED",
     "rigid_body_coriolis",
     "added_mass_coriolis",
     "damping_force",
@@ -58,6 +59,8 @@ STATUS_SUNK = wp.constant(8)
 STATUS_BAD_INPUT = wp.constant(16)
 """A force model was handed a NaN or infinite input (a command, the wind); set with STATUS_NONFINITE,
 so the boat is frozen at its last finite state until reset."""
+STATUS_COLLIDED = wp.constant(32)
+"""The boat touched an object or another boat of its environment (``ocean_warp.contact``); not frozen."""
 
 
 @wp.struct

@@ -15,6 +15,7 @@ from .resistance import FROUDE_SAMPLES
 from .kernels.rigid_body import (
     STATUS_BAD_INPUT,
     STATUS_CAPSIZED,
+    STATUS_COLLIDED,
     STATUS_FLYING,
     STATUS_NONFINITE,
     STATUS_SUNK,
@@ -44,6 +45,8 @@ class BoatStatus:
     BAD_INPUT = int(STATUS_BAD_INPUT)
     """A force model got a NaN or infinite input (e.g. a rudder command or the wind written from torch);
     set together with NONFINITE, so the boat is frozen too."""
+    COLLIDED = int(STATUS_COLLIDED)
+    """Touched an object or another boat of its environment (``ocean_warp.contact.Contact``)."""
 
 
 class FleetTensors(NamedTuple):

@@ -107,6 +107,14 @@ class Simulator:
                 raise ValueError(f"Simulator: model {model!r} has no substep(simulator) method")
         self._replayed_step = ReplayedLaunches(self.launch_step, self.device, capture=self.config.capture_graph)
 
+    def add_model(self, model) -> None:
+        """Add a force model (``substep(simulator)``, optionally ``step(simulator)``) after the others; the step
+        is captured anew at its next call."""
+        if not callable(getattr(model, "substep", None)):
+            raise ValueError(f"Simulator.add_model: {model!r} has no substep(simulator) method")
+        self.models.append(model)
+        self._replayed_step = ReplayedLaunches(self.launch_step, self.device, capture=self.config.capture_graph)
+
     @property
     def time(self) -> float:
         """Simulated time [s] (reads the device; do not call inside a capture)."""
