@@ -35,7 +35,7 @@ import warp as wp
 
 from .ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER, SceneView, cast_ray
 
-__all__ = ["CameraLens", "render_cameras", "mounted_camera_poses", "look_at_poses", "follow_boat",
+__all__ = ["CameraLens", "count_decisions", "render_cameras", "mounted_camera_poses", "look_at_poses", "follow_boat",
            "look_at_rotation", "ZENITH_COLOR", "HORIZON_COLOR", "DEEP_WATER_COLOR", "HULL_COLOR", "SAIL_COLOR",
            "SUN_DIRECTION", "AMBIENT", "WATER_REFLECTANCE"]
 
@@ -262,3 +262,9 @@ def follow_boat(boat_position: wp.array(dtype=wp.vec3), boat_orientation: wp.arr
         primed[0] = 1
     eye[0] = wp.lerp(eye[0], wanted_eye, share)
     target[0] = wp.lerp(target[0], wanted_target, share)
+
+
+@wp.kernel(enable_backward=False)
+def count_decisions(gate: wp.array(dtype=int), period: int):
+    """``gate`` (1,) counts decisions modulo ``period``: a camera slower than the decisions renders when it is 0."""
+    gate[0] = (gate[0] + 1) % period

@@ -119,21 +119,37 @@ def _misses_bound(center: wp.vec3, radius: float, origin: wp.vec3, direction: wp
 
 
 @wp.func
-def _sphere(center: wp.vec3, radius: float, origin: wp.vec3, direction: wp.vec3, t_min: float) -> float:
-    """Nearest t >= t_min where the unit ray meets the sphere, or -1."""
+def _sphere(center: wp.vec3, radius: float, origin: wp.vec3, direction: wp.vec3, t_min: float) -> wp.vec4:
+    """(t, outward normal) of the nearest t >= t_min where the unit ray meets the sphere; t = -1 on a miss."""
     oc = origin - center
     b = wp.dot(oc, direction)
     c = wp.dot(oc, oc) - radius * radius
     disc = b * b - c
     if disc < 0.0:
-        return -1.0
+        return wp.vec4(-1.0, 0.0, 0.0, 0.0)
     root = wp.sqrt(disc)
     t = -b - root
     if t < t_min:
         t = -b + root
     if t < t_min:
-        return -1.0
-    return t
+        return wp.vec4(-1.0, 0.0, 0.0, 0.0)
+    normal = (oc + t * direction) / radius
+    return wp.vec4(t, normal[0], normal[1], normal[2])
+
+
+@wp.func
+def _nearer(hit: RayHit, found: wp.vec4, t_min: float, kind: int, index: int, part: int) -> RayHit:
+    """``hit``, or the hit ``found`` (t [m], normal) of a body of ``kind``, ``index`` and ``part`` when it
+    lies in [t_min, hit.t) (t = -1: a miss)."""
+    if found[0] < t_min or found[0] >= hit.t:
+        return hit
+    nearer = RayHit()
+    nearer.t = found[0]
+    nearer.kind = kind
+    nearer.index = index
+    nearer.part = part
+    nearer.normal = wp.vec3(found[1], found[2], found[3])
+    return nearer
 
 
 @wp.func
@@ -348,30 +364,18 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
             continue
         shape = scene.object_shape[k]
         size = scene.object_size[k]
+        rotation = scene.object_orientation[k]
+        found = wp.vec4(-1.0, 0.0, 0.0, 0.0)
         if shape == SHAPE_SPHERE:
-            t = _sphere(position, size[0], origin, direction, t_min)
-            if t >= 0.0 and t < hit.t:
-                hit.t = t
-                hit.kind = HIT_OBJECT
-                hit.index = k
-                hit.normal = wp.normalize(origin + t * direction - position)
+            found = _sphere(position, size[0], origin, direction, t_min)
         elif shape == SHAPE_CYLINDER:
-            rotation = scene.object_orientation[k]
             local = _cylinder(size[0], size[1], wp.quat_rotate_inv(rotation, origin - position),
                               wp.quat_rotate_inv(rotation, direction), t_min)
-            if local[0] >= 0.0 and local[0] < hit.t:
-                hit.t = local[0]
-                hit.kind = HIT_OBJECT
-                hit.index = k
-                hit.normal = wp.quat_rotate(rotation, wp.vec3(local[1], local[2], local[3]))
+            normal = wp.quat_rotate(rotation, wp.vec3(local[1], local[2], local[3]))
+            found = wp.vec4(local[0], normal[0], normal[1], normal[2])
         else:
-            found = _mesh_in_frame(scene.object_mesh[k], position, scene.object_orientation[k], origin, direction,
-                                   hit.t)
-            if found[0] >= t_min and found[0] < hit.t:
-                hit.t = found[0]
-                hit.kind = HIT_OBJECT
-                hit.index = k
-                hit.normal = wp.vec3(found[1], found[2], found[3])
+            found = _mesh_in_frame(scene.object_mesh[k], position, rotation, origin, direction, hit.t)
+        hit = _nearer(hit, found, t_min, HIT_OBJECT, k, 0)
     for slot in range(scene.boat_start[env], scene.boat_start[env + 1]):
         boat = scene.boat_list[slot]
         if boat == own_boat:
@@ -380,28 +384,19 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
         if _misses_bound(position, scene.boat_bound, origin, direction, hit.t):
             continue
         rotation = scene.boat_orientation[boat]
-        found = _mesh_in_frame(scene.body_mesh, position, rotation, origin, direction, hit.t)
-        if found[0] >= t_min and found[0] < hit.t:
-            hit.t = found[0]
-            hit.kind = HIT_BOAT
-            hit.index = boat
-            hit.part = 0
-            hit.normal = wp.vec3(found[1], found[2], found[3])
+        hit = _nearer(hit, _mesh_in_frame(scene.body_mesh, position, rotation, origin, direction, hit.t), t_min,
+                      HIT_BOAT, boat, 0)
         boom = rotation * wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), -scene.boom_angle[boat])
         pivot = position + wp.quat_rotate(rotation, scene.boom_pivot)
-        found = _mesh_in_frame(scene.boom_mesh, pivot, boom, origin, direction, hit.t)
-        if found[0] >= t_min and found[0] < hit.t:
-            hit.t = found[0]
-            hit.kind = HIT_BOAT
-            hit.index = boat
-            hit.part = 1
-            hit.normal = wp.vec3(found[1], found[2], found[3])
+        hit = _nearer(hit, _mesh_in_frame(scene.boom_mesh, pivot, boom, origin, direction, hit.t), t_min,
+                      HIT_BOAT, boat, 1)
     if scene.water_visible != 0:
         t = water_distance(scene.heights, scene.surface, scene.water_band, origin, direction, t_min, hit.t)
         if t >= 0.0 and (t < hit.t or hit.kind == HIT_NONE):
             hit.t = t
             hit.kind = HIT_WATER
             hit.index = -1
+            hit.part = 0
             point = origin + t * direction
             hit.normal = surface_normal(scene.surface, undisplaced_position(scene.surface, wp.vec2(point[0], point[1])))
     hit.normal = _facing(hit.normal, direction)

@@ -6,7 +6,7 @@ import contextlib
 import os
 import tempfile
 
-__all__ = ["atomic_output"]
+__all__ = ["atomic_output", "save_figure"]
 
 
 @contextlib.contextmanager
@@ -29,3 +29,15 @@ def atomic_output(path: str | os.PathLike, suffix: str = ""):
         with contextlib.suppress(FileNotFoundError):
             os.remove(temporary)
         raise
+
+
+def save_figure(figure, path: str | os.PathLike, *, dpi: int = 110) -> None:
+    """Write a matplotlib ``figure`` to ``path`` as a PNG of ``dpi`` dots per inch, atomically, and close it
+    (also when writing fails)."""
+    import matplotlib.pyplot as plt
+
+    try:
+        with atomic_output(path, suffix=".png") as temporary:
+            figure.savefig(temporary, dpi=dpi, format="png")
+    finally:
+        plt.close(figure)

@@ -73,7 +73,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ocean_warp.atomic_files import atomic_output
+from ocean_warp.atomic_files import atomic_output, save_figure
 from benchmarks import REPO, DATA, FIGURES
 
 DEFAULT_INPUTS = REPO.parent / "shared/eboat/vpp_inputs.json"
@@ -342,11 +342,7 @@ def write_figure(path: Path, speed, resistance, package_resistance):
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8)
     fig.tight_layout()
-    try:
-        with atomic_output(path) as temporary:
-            fig.savefig(temporary, dpi=120, format="png")
-    finally:
-        plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def _at(speed, i, twa):

@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 import warp as wp
 
-from ocean_warp.atomic_files import atomic_output
+from ocean_warp.atomic_files import atomic_output, save_figure
 from ocean_warp.eboat import EBoat, EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.hull_form import floating_waterline
@@ -190,11 +190,7 @@ def write_figure(path: Path, curve, heave_only, vpp, steady, gravity: float) -> 
     ax.legend(fontsize=8, loc="upper left")
     ax.set_title("E-Boat righting arm: mesh hydrostatics, VPP input, simulator", fontsize=10)
     fig.tight_layout()
-    try:
-        with atomic_output(path) as temporary:
-            fig.savefig(temporary, dpi=120, format="png")
-    finally:
-        plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def print_tables(curve, heave_only, vpp, gm: float, steady, predicted) -> None:

@@ -17,7 +17,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from ocean_warp.atomic_files import atomic_output
+from ocean_warp.atomic_files import save_figure
 
 __all__ = ["PanelData", "plot_trajectories"]
 
@@ -103,9 +103,7 @@ def plot_trajectories(panels: Sequence[PanelData], path: str | os.PathLike, *, w
     if suptitle:  # wrapped to the figure's width: about 13 characters of 10 pt text an inch
         fig.suptitle(textwrap.fill(suptitle, width=max(40, int(13 * width))), fontsize=10)
     fig.tight_layout()
-    with atomic_output(path, suffix=".png") as temporary:
-        fig.savefig(temporary, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def _waypoint(ax, point, reach_radius: float, *, circle, dot, ms: float, lw: float) -> None:

@@ -16,7 +16,7 @@ import numpy as np
 import warp as wp
 
 import ocean_warp as ow
-from ocean_warp.atomic_files import atomic_output
+from ocean_warp.atomic_files import atomic_output, save_figure
 from ocean_warp.cli_support import (
     add_device_argument,
     check_options,
@@ -100,9 +100,7 @@ def _plot(path, times, heave, roll, names) -> None:
     top.legend(loc="upper right", ncol=len(colours))
     top.set_title("hulls dropped into a JONSWAP sea (Hs 1.2 m, Tp 5 s)")
     fig.tight_layout()
-    with atomic_output(path) as temporary:
-        fig.savefig(temporary, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def _write_csv(path, times, heave, roll, names) -> None:

@@ -18,7 +18,7 @@ import numpy as np
 import warp as wp
 
 from ocean_warp import Ocean, OceanConfig, spectra
-from ocean_warp.atomic_files import atomic_output
+from ocean_warp.atomic_files import save_figure
 from ocean_warp.cli_support import (
     add_device_argument,
     check_options,
@@ -62,9 +62,7 @@ def save_height_png(ocean: Ocean, path: str) -> None:
     t = float(ocean.time.numpy()[0])
     ax.set_title(f"JONSWAP Hs {ocean.config.significant_wave_height} m, Tp {ocean.config.peak_period} s, t = {t:.1f} s")
     fig.tight_layout()
-    with atomic_output(path) as temporary:
-        fig.savefig(temporary, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def save_spectrum_png(config: OceanConfig, heights: list[np.ndarray], path: str) -> None:
@@ -87,9 +85,7 @@ def save_spectrum_png(config: OceanConfig, heights: list[np.ndarray], path: str)
     ax.set_title(f"Hs: target {config.significant_wave_height:.2f} m, measured {hs_measured:.2f} m")
     ax.legend()
     fig.tight_layout()
-    with atomic_output(path) as temporary:
-        fig.savefig(temporary, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def run(out_dir: str, *, device=None, resolution: int = 256, significant_wave_height: float = 2.0,

@@ -19,7 +19,7 @@ import time
 import numpy as np
 import warp as wp
 
-from ocean_warp.atomic_files import atomic_output
+from ocean_warp.atomic_files import atomic_output, save_figure
 from ocean_warp.cli_support import (
     add_device_argument,
     check_options,
@@ -68,9 +68,7 @@ def plot(path: str, result: PolarResult, limit: float) -> None:
     ax.set_title("E-Boat speed polar: boat speed [m/s] over true wind angle")
     ax.legend(loc="lower left", fontsize=8)
     fig.tight_layout()
-    with atomic_output(path) as temporary:
-        fig.savefig(temporary, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def main(argv=None) -> int:

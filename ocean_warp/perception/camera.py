@@ -28,7 +28,7 @@ import warp as wp
 
 from ..envs.sailing_env import DecisionHook, SailingEnv
 from ..frames import quaternion_from_roll_pitch_yaw
-from ..kernels.camera_render import CameraLens, look_at_poses, mounted_camera_poses, render_cameras
+from ..kernels.camera_render import CameraLens, count_decisions, look_at_poses, mounted_camera_poses, render_cameras
 from ..validation import require_finite, require_in_range, require_int_in_range, require_non_negative, require_positive
 from .scene import Scene
 
@@ -220,11 +220,6 @@ class Camera(_CameraBatch):
         self._launch_render()
 
 
-@wp.kernel(enable_backward=False)
-def _count_decisions(gate: wp.array(dtype=int), period: int):
-    gate[0] = (gate[0] + 1) % period
-
-
 class CameraHook(DecisionHook):
     """A camera on every boat of a :class:`~ocean_warp.envs.SailingEnv` (boat i in environment i, blind to its
     own boat), capturing at its config's rate inside every decision: after each capturing physics step the
@@ -289,7 +284,7 @@ class CameraHook(DecisionHook):
         self.scene.refresh()
         camera.capture()
         if self.decisions_between_captures > 1:
-            wp.launch(_count_decisions, dim=1, device=camera.device,
+            wp.launch(count_decisions, dim=1, device=camera.device,
                       inputs=[camera.gate, self.decisions_between_captures])
         slot = self._slot_of_step[step]
         for recorded, image in ((self.recorded_depth, camera.depth_array), (self.recorded_rgb, camera.rgb_array)):

@@ -115,7 +115,8 @@ class LidarConfig:
         set_field("min_range", require_non_negative(owner, "min_range", self.min_range, unit=" [m]"))
         set_field("max_range", require_positive(owner, "max_range", self.max_range, unit=" [m]"))
         if self.min_range >= self.max_range:
-            raise ValueError(f"{owner}.min_range must be below max_range {self.max_range!r} [m], got {self.min_range!r}")
+            raise ValueError(f"{owner}.min_range must be below max_range {self.max_range!r} [m], "
+                             f"got {self.min_range!r}")
         set_field("rate", require_positive(owner, "rate", self.rate, unit=" [Hz]"))
         set_field("mount", _require_triple(owner, "mount", self.mount))
         set_field("mount_rpy", _require_triple(owner, "mount_rpy", self.mount_rpy))
@@ -245,7 +246,8 @@ class Lidar:
 
     def scan(self) -> None:
         """One scan of every boat's lidar from the boats' current poses over the scene as last refreshed, then
-        every observation asked for with :meth:`downsampled`; the noise stream moves on. Launches only (graph-safe). Outside a captured graph wrap it in
+        every observation asked for with :meth:`downsampled`; the noise stream moves on. Launches only
+        (graph-safe). Outside a captured graph wrap it in
         ``ocean_warp.torch_streams.ordered_with_torch(lidar.device)`` before torch reads the views on CUDA."""
         wp.launch(scan_lidar, dim=(self.count, self.beam_count), device=self.device,
                   inputs=[self._view, self._model, self._boat_env, self._counter],
@@ -293,7 +295,8 @@ class Lidar:
 def _lidar_model(config: LidarConfig, device, first_index: int) -> LidarModel:
     azimuth, elevation = config.beam_angles()
     mount_rotation = quaternion_from_roll_pitch_yaw(np.array(config.mount_rpy))[0]
-    return struct_from(LidarModel, config, water_returns=int(config.water_returns), azimuth=wp.array(azimuth.astype(np.float32), dtype=float, device=device),
+    return struct_from(LidarModel, config, water_returns=int(config.water_returns),
+                       azimuth=wp.array(azimuth.astype(np.float32), dtype=float, device=device),
                        elevation=wp.array(elevation.astype(np.float32), dtype=float, device=device),
                        mount_position=wp.vec3(*config.mount), mount_rotation=wp.quat(*mount_rotation),
                        first_index=first_index)

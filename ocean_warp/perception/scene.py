@@ -293,10 +293,11 @@ class Scene:
         envs = np.zeros(count, np.int32) if envs is None else np.broadcast_to(np.asarray(envs, np.int32), count)
         if np.any(envs < 0) or np.any(envs >= self.envs):
             raise ValueError(f"Scene.cast: envs must lie in [0, {self.envs})")
-        own = np.full(count, -1, np.int32) if own_boat is None else np.broadcast_to(np.asarray(own_boat, np.int32), count)
+        own = np.full(count, -1, np.int32) if own_boat is None \
+            else np.broadcast_to(np.asarray(own_boat, np.int32), count)
         device = self.device
-        out = {"distance": wp.zeros(count, dtype=float, device=device), "kind": wp.zeros(count, dtype=int, device=device),
-               "index": wp.zeros(count, dtype=int, device=device), "normal": wp.zeros(count, dtype=wp.vec3, device=device)}
+        out = {name: wp.zeros(count, dtype=dtype, device=device)
+               for name, dtype in (("distance", float), ("kind", int), ("index", int), ("normal", wp.vec3))}
         wp.launch(cast_rays, dim=count, device=device,
                   inputs=[self.view, wp.array(envs, dtype=int, device=device),
                           wp.array(origins, dtype=wp.vec3, device=device),

@@ -15,7 +15,7 @@ import torch
 
 from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
-from ocean_warp.envs import TASK_IDS, EnvBuffers, MissionConfig, SailingEnv
+from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv
 from ocean_warp.envs.training import policies
 from ocean_warp.envs.apps.evaluation import (
     AutopilotController,
@@ -38,6 +38,7 @@ from ocean_warp.envs.apps.mission_metrics import (
 )
 from ocean_warp.envs.training.policy_io import build_actor, load_policy, save_checkpoint
 from ocean_warp.ocean_config import OceanConfig
+from tests.env_buffers import assert_same_buffers
 
 DEG = math.pi / 180.0
 COLUMNS = ["controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
@@ -251,9 +252,7 @@ def test_recorded_decision_is_env_step(device):
         stepped.step(actions)
         recorded.buffers.actions.copy_(actions)
         decision()
-        for field in dataclasses.fields(EnvBuffers):
-            torch.testing.assert_close(getattr(recorded.buffers, field.name), getattr(stepped.buffers, field.name),
-                                       rtol=0, atol=0, msg=f"{field.name} after decision {k}")
+        assert_same_buffers(recorded.buffers, stepped.buffers, f"after decision {k}")
         for name in ("position", "orientation", "velocity"):
             np.testing.assert_array_equal(getattr(recorded.simulator.state, name).numpy(),
                                           getattr(stepped.simulator.state, name).numpy())

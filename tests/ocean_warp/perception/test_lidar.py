@@ -22,12 +22,13 @@ from scipy.spatial.transform import Rotation
 from ocean_warp import Ocean, OceanConfig
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics
 from ocean_warp.eboat.parts import eboat_parts
-from ocean_warp.envs import EnvBuffers, SailingEnv, WaypointConfig
+from ocean_warp.envs import SailingEnv, WaypointConfig
 from ocean_warp.envs.sailing_env import DecisionHook
 from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER
 from ocean_warp.meshes import concatenate
 from ocean_warp.perception import Lidar, LidarConfig, LidarHook, Scene, SceneObject, Shape
 from ocean_warp.torch_streams import ordered_with_torch
+from tests.env_buffers import assert_same_buffers
 
 NONE, WATER, OBJECT, BOAT = int(HIT_NONE), int(HIT_WATER), int(HIT_OBJECT), int(HIT_BOAT)
 
@@ -523,9 +524,7 @@ def test_hook_scans_at_the_rate_and_leaves_the_decision_unchanged(device, rng):
         actions = (2.0 * torch.rand(3, 3, generator=generator) - 1.0).to(plain.torch_device)
         plain.step(actions)
         hooked.step(actions)
-        for field in dataclasses.fields(EnvBuffers):
-            torch.testing.assert_close(getattr(hooked.buffers, field.name), getattr(plain.buffers, field.name),
-                                       rtol=0, atol=0, msg=f"{field.name} after decision {decision}")
+        assert_same_buffers(hooked.buffers, plain.buffers, f"after decision {decision}")
         resets += int(plain.buffers.done.sum())
         twin.buffers.actions.copy_(actions)
         by_hand.scans = []

@@ -9,7 +9,6 @@ import pytest
 import trimesh
 import warp as wp
 
-import ocean_warp as ow
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER
@@ -226,4 +225,3 @@ def test_bad_scenes_and_casts_are_clear_errors(device):
         scene.cast([[0, 0, 1]], [[0, 0, 0]])
     with pytest.raises(ValueError, match=r"envs must lie in \[0, 1\)"):
         scene.cast([[0, 0, 1]], [[1, 0, 0]], envs=[3])
-    assert ow.WaterConfig().density == 1025.0  # the scene reads the ocean; the water stays the sea's
