@@ -87,6 +87,10 @@ class EnvBuffers:
     """(N,) int32: the simulator's ``BoatStatus`` bits when it ended (0: healthy)."""
     final_waypoints: Any
     """(N,) int32: waypoints it reached."""
+    # --- the obstacles (a task with ``obstacles``; K = 0 without) ---
+    obstacles: Any
+    """(N, K, 4) float32: each environment's obstacles now: x, y from its origin [m], radius [m] and kind
+    (0: an empty row, 1: a buoy, 2: a pile; ``ocean_warp.envs.tasks.obstacle_course.OBSTACLE_*``)."""
 
 
 @runtime_checkable

@@ -1,8 +1,9 @@
 """Task ids: their configs, and their registration with gymnasium.
 
 ``register_envs()`` registers ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``,
-``ocean_warp/EBoatMission-v0`` and ``ocean_warp/EBoatMissionSail-v0`` (the mission under sail alone: the
-propeller off, a0 ignored; the physics profile's boat), each with a single-boat ``entry_point``
+``ocean_warp/EBoatMission-v0``, ``ocean_warp/EBoatMissionSail-v0`` (the mission under sail alone: the
+propeller off, a0 ignored; the physics profile's boat), ``ocean_warp/EBoatAvoid-v0`` (a waypoint through
+buoys and piles, with a lidar) and ``ocean_warp/EBoatAvoidSail-v0`` (the same under sail alone), each with a single-boat ``entry_point``
 (``gymnasium.make``) and a batched ``vector_entry_point`` (``gymnasium.make_vec(...,
 vectorization_mode="vector_entry_point")``).
 Nothing is registered with ``max_episode_steps``: the simulator times episodes out itself, so
@@ -21,7 +22,8 @@ __all__ = ["NAMESPACE", "TASK_IDS", "task_name", "make_task_config", "register_e
 NAMESPACE = "ocean_warp"
 """Gymnasium namespace of the ids registered here."""
 
-TASK_IDS = ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0", "EBoatMissionSail-v0")
+TASK_IDS = ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0", "EBoatMissionSail-v0", "EBoatAvoid-v0",
+            "EBoatAvoidSail-v0")
 """Task ids, without the namespace."""
 
 _CONFIG_CLASS_NAMES = {
@@ -29,6 +31,8 @@ _CONFIG_CLASS_NAMES = {
     "EBoatWaypointPlus-v0": "WaypointPlusConfig",
     "EBoatMission-v0": "MissionConfig",
     "EBoatMissionSail-v0": "MissionSailConfig",
+    "EBoatAvoid-v0": "AvoidConfig",
+    "EBoatAvoidSail-v0": "AvoidSailConfig",
 }
 
 

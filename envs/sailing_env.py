@@ -10,7 +10,6 @@ arrays that torch reads through views bound in the constructor (``env.buffers``)
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -37,6 +36,7 @@ from .tasks.task_kernels import (
     evaluate,
     observe,
 )
+from .decision_hook import DecisionHook, HookChain
 from .protocol import EnvBuffers, episode_log
 from .tasks.task_configs import ObservationSet, TaskConfig
 
@@ -52,41 +52,6 @@ def environment_origins(count: int, tile_size: float, spread: bool) -> np.ndarra
     steps = np.arange(count, dtype=np.float64)[:, None] * np.array([1.0 / plastic, 1.0 / plastic**2])
     xy = np.mod(0.5 + steps, 1.0) * tile_size
     return np.column_stack([xy, np.zeros(count)]).astype(np.float32)
-
-
-class DecisionHook:
-    """Launches a recorder adds at fixed points of a decision (:meth:`SailingEnv.launch_decision`): after the
-    actions kernel, after each physics step and after the last one, before the task's kernels restart the
-    environments that ended. They run inside the decision's graph, so they must be device work only (copies
-    into arrays allocated once). The defaults launch nothing."""
-
-    def after_actions(self, env: "SailingEnv") -> None:
-        """After actions became actuator commands (``env.simulator.control``)."""
-
-    def after_physics_step(self, env: "SailingEnv", step: int) -> None:
-        """After physics step ``step`` (0 ... ``env.steps_per_decision`` - 1) of the decision."""
-
-    def after_physics(self, env: "SailingEnv") -> None:
-        """After the decision's physics, before rewards, episode ends and resets."""
-
-
-@dataclasses.dataclass
-class _HookChain(DecisionHook):
-    """Several hooks as one, in order."""
-
-    hooks: list
-
-    def after_actions(self, env: "SailingEnv") -> None:
-        for hook in self.hooks:
-            hook.after_actions(env)
-
-    def after_physics_step(self, env: "SailingEnv", step: int) -> None:
-        for hook in self.hooks:
-            hook.after_physics_step(env, step)
-
-    def after_physics(self, env: "SailingEnv") -> None:
-        for hook in self.hooks:
-            hook.after_physics(env)
 
 
 class SailingEnv:
@@ -121,7 +86,8 @@ class SailingEnv:
         self.simulator = EBoatSimulator(task.simulator, self.num_envs, device=device, first_boat=self.first_env)
         self.device = self.simulator.device
         self.torch_device = torch.device(wp.device_to_torch(self.device))
-        self.num_policy_obs = POLICY_OBS[ObservationSet(task.observation).value]
+        observation_set_size = POLICY_OBS[ObservationSet(task.observation).value]
+        self.num_policy_obs = observation_set_size + task.lidar_observations
         self.num_critic_obs = self.num_policy_obs + PRIVILEGED_OBS
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period
@@ -168,6 +134,16 @@ class SailingEnv:
         """(N,) the boats' positions after the last decision's physics, before any reset [m]."""
         self.final_orientation = zeros(n, wp.quat)
         self._everyone = wp.ones(n, dtype=wp.int32, device=device)
+        self.clearance = wp.full(n, task.reward.proximity_range, dtype=float, device=device)
+        """(N,) each boat's gap to the nearest obstacle after the last decision [m] (the reward's proximity
+        range on open water)."""
+        self.obstacles = None
+        """The :class:`~ocean_warp.envs.tasks.obstacle_course.ObstacleCourse` (layouts, contact, lidar) of a
+        task with ``obstacles`` or a ``lidar``; None otherwise."""
+        if task.obstacles is not None or task.lidar is not None or task.contact is not None:
+            from .tasks.obstacle_course import ObstacleCourse  # deferred: it imports the sensors, which import this
+
+            self.obstacles = ObstacleCourse(self, self.clearance, observation_set_size)
 
         self._course = struct_from(Course, self)
         """The task's per-environment arrays, grouped as the kernels take them."""
@@ -188,13 +164,19 @@ class SailingEnv:
             propeller_level=view(self.propeller_level), final_position=view(self.final_position),
             final_orientation=view(self.final_orientation), final_return=view(self.final_return),
             final_length=view(self.final_length), final_success=view(self.final_success),
-            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints))
+            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
+            obstacles=self._obstacle_view())
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`)."""
-        self._hooks = _HookChain([])
+        self._hooks = HookChain([])
         """The hooks :meth:`attach` added to every step."""
         self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
                                                    capture=self.task.simulator.capture_graph)
         self.reset()
+
+    def _obstacle_view(self) -> torch.Tensor:
+        if self.obstacles is None or self.obstacles.slots == 0:
+            return torch.zeros((self.num_envs, 0, 4), device=self.torch_device)
+        return wp.to_torch(self.obstacles.table)
 
     # --- the decision step ------------------------------------------------------------------------
     def step(self, actions: torch.Tensor | None = None) -> None:
@@ -233,7 +215,7 @@ class SailingEnv:
         """The launches of one decision (what :meth:`step` replays): actions to commands, the physics steps
         and the task's kernels, with the attached hooks' launches (:meth:`attach`) and then ``hook``'s at
         their three points (launch only; graph-safe when the hooks' are)."""
-        hook = self._hooks if hook is None else _HookChain(self._hooks.hooks + [hook])
+        hook = self._hooks if hook is None else HookChain(self._hooks.hooks + [hook])
         state = self.simulator.state
         self.launch_actions()
         wp.copy(self.propeller_level, self.simulator.control.propeller)
@@ -259,20 +241,31 @@ class SailingEnv:
         """The environment layer after the physics: rewards and episode ends, the final observations, new
         episodes for the environments that ended, and the observations of the next decision (launch only)."""
         state = self.simulator.state
+        self._sense()
         wp.launch(evaluate, dim=self.num_envs, device=self.device,
-                  inputs=[self.parameters, self.actions, state.status, state.position, self._course, self._ends])
+                  inputs=[self.parameters, self.actions, state.status, state.position, self.clearance, self._course,
+                          self._ends])
         self._observe(self.final_policy_obs, self.final_critic_obs)
         self._start_episodes(self.reset_mask)
+        self._sense()
         self._observe(self.policy_obs, self.critic_obs)
+
+    def _sense(self) -> None:
+        if self.obstacles is not None:
+            self.obstacles.sense()
 
     def _observe(self, policy: wp.array, critic: wp.array) -> None:
         wp.launch(observe, dim=self.num_envs, device=self.device, inputs=[self.parameters, self._boats, self._course],
                   outputs=[policy, critic])
+        if self.obstacles is not None:
+            self.obstacles.append_observation(policy, critic)
 
     def _start_episodes(self, mask: wp.array) -> None:
         wp.launch(draw_starts, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self._course,
                           self._start_rows])
+        if self.obstacles is not None:
+            self.obstacles.draw(self._seed, self.first_env, mask, self._course)
         self.simulator.reset_masked(mask)
 
     # --- host calls --------------------------------------------------------------------------------
@@ -286,10 +279,13 @@ class SailingEnv:
                 self._seed.fill_(self.seed)
                 self.episode_count.zero_()
                 self.simulator.rewind()
+                if self.obstacles is not None:
+                    self.obstacles.restart_streams()
             self.terminated.zero_()
             self.time_out.zero_()
             self.done.zero_()
             self._start_episodes(self._everyone)
+            self._sense()
             self._observe(self.policy_obs, self.critic_obs)
             wp.copy(self.final_policy_obs, self.policy_obs)
             wp.copy(self.final_critic_obs, self.critic_obs)

@@ -19,7 +19,7 @@ from .ray_cast import SHAPE_CYLINDER, SHAPE_SPHERE, SceneView
 from .rigid_body import STATUS_COLLIDED, STATUS_NONFINITE
 from .spatial import point_velocity, vec6
 
-__all__ = ["ContactModel", "contact_wrenches"]
+__all__ = ["ContactModel", "ObjectNearness", "contact_wrenches", "object_clearances"]
 AXIS_SAMPLES = wp.constant(7)
 """Points along the capsule's axis where a mesh object's nearest point is looked up."""
 
@@ -101,6 +101,63 @@ def _far(center: wp.vec3, reach: float, a: wp.vec3, b: wp.vec3) -> bool:
     return wp.length(center - closest) > reach
 
 
+@wp.struct
+class ObjectNearness:
+    """The nearest points of a boat's capsule axis and an object (``_nearest_to_object``)."""
+
+    boat_point: wp.vec3
+    """On the capsule's axis, world [m]."""
+    other_point: wp.vec3
+    """On the object: a sphere's centre, a point of a pile's axis, a point of a mesh's surface [m]."""
+    reach: float
+    """Centre distance at which they touch [m]: the capsule's radius plus a sphere's or pile's radius (plus
+    nothing for a mesh, whose point is on its surface)."""
+    found: int
+    """0: a mesh object farther than the search distance (the points mean nothing)."""
+
+
+@wp.func
+def _nearest_to_object(scene: SceneView, model: ContactModel, k: int, a: wp.vec3, b: wp.vec3,
+                       search: float) -> ObjectNearness:
+    """Object ``k`` against the capsule axis a-b: exact for a sphere and a pile; for a mesh, its nearest
+    point to ``AXIS_SAMPLES`` points of the axis, looked up within ``search`` [m] of the axis."""
+    near = ObjectNearness()
+    near.found = 1
+    center = scene.object_position[k]
+    size = scene.object_size[k]
+    shape = scene.object_shape[k]
+    if shape == SHAPE_SPHERE:
+        near.boat_point = _closest_on_segment(a, b, center)
+        near.other_point = center
+        near.reach = model.radius + size[0]
+    elif shape == SHAPE_CYLINDER:
+        axis = wp.quat_rotate(scene.object_orientation[k], wp.vec3(0.0, 0.0, size[1]))
+        pair = _closest_pair(a, b, center - axis, center + axis)
+        near.boat_point = a + pair[0] * (b - a)
+        near.other_point = center - axis + pair[1] * (2.0 * axis)
+        near.reach = model.radius + size[0]
+    else:
+        near.reach = model.radius
+        near.found = 0
+        if _far(center, scene.object_bound[k] + search, a, b):
+            return near
+        best = float(1.0e30)
+        rotation_k = scene.object_orientation[k]
+        for i in range(AXIS_SAMPLES):
+            sample = a + (float(i) / float(AXIS_SAMPLES - 1)) * (b - a)
+            local = wp.quat_rotate_inv(rotation_k, sample - center)
+            query = wp.mesh_query_point_no_sign(scene.object_mesh[k], local, search)
+            if query.result:
+                nearest = wp.mesh_eval_position(scene.object_mesh[k], query.face, query.u, query.v)
+                distance = wp.length(local - nearest)
+                if distance < best:
+                    best = distance
+                    near.boat_point = sample
+                    near.other_point = center + wp.quat_rotate(rotation_k, nearest)
+                    near.found = 1
+    return near
+
+
 @wp.kernel(enable_backward=False)
 def contact_wrenches(scene: SceneView, model: ContactModel, boat_env: wp.array(dtype=int),
                      velocity: wp.array(dtype=vec6), status: wp.array(dtype=int),
@@ -120,41 +177,12 @@ def contact_wrenches(scene: SceneView, model: ContactModel, boat_env: wp.array(d
     total = vec6()
     touching = int(0)
     for k in range(scene.object_start[env], scene.object_start[env + 1]):
-        center = scene.object_position[k]
-        size = scene.object_size[k]
-        shape = scene.object_shape[k]
-        boat_point = wp.vec3()
-        other_point = wp.vec3()
-        reach = model.radius
-        if shape == SHAPE_SPHERE:
-            boat_point = _closest_on_segment(a, b, center)
-            other_point = center
-            reach = model.radius + size[0]
-        elif shape == SHAPE_CYLINDER:
-            axis = wp.quat_rotate(scene.object_orientation[k], wp.vec3(0.0, 0.0, size[1]))
-            pair = _closest_pair(a, b, center - axis, center + axis)
-            boat_point = a + pair[0] * (b - a)
-            other_point = center - axis + pair[1] * (2.0 * axis)
-            reach = model.radius + size[0]
-        else:
-            if _far(center, scene.object_bound[k] + model.radius, a, b):
-                continue
-            best = float(1.0e30)
-            rotation_k = scene.object_orientation[k]
-            for i in range(AXIS_SAMPLES):
-                sample = a + (float(i) / float(AXIS_SAMPLES - 1)) * (b - a)
-                local = wp.quat_rotate_inv(rotation_k, sample - center)
-                query = wp.mesh_query_point_no_sign(scene.object_mesh[k], local, model.radius)
-                if query.result:
-                    nearest = wp.mesh_eval_position(scene.object_mesh[k], query.face, query.u, query.v)
-                    distance = wp.length(local - nearest)
-                    if distance < best:
-                        best = distance
-                        boat_point = sample
-                        other_point = center + wp.quat_rotate(rotation_k, nearest)
-            if best > 1.0e29:
-                continue
-        gap = boat_point - other_point
+        near = _nearest_to_object(scene, model, k, a, b, model.radius)
+        if near.found == 0:
+            continue
+        boat_point = near.boat_point
+        reach = near.reach
+        gap = boat_point - near.other_point
         distance = wp.length(gap)
         depth = reach - distance
         if depth > 0.0 and distance > 1.0e-9:
@@ -183,3 +211,24 @@ def contact_wrenches(scene: SceneView, model: ContactModel, boat_env: wp.array(d
         status[boat] = status[boat] | STATUS_COLLIDED
         model_wrench[boat] = model_wrench[boat] + total
 
+
+
+@wp.kernel(enable_backward=False)
+def object_clearances(scene: SceneView, model: ContactModel, boat_env: wp.array(dtype=int), search: float,
+                      clearance: wp.array(dtype=float)):
+    """One thread per boat: the gap between its capsule and the nearest object of its environment [m] (0 when
+    they overlap; ``search`` where none is nearer than that, or the boat is in no environment)."""
+    boat = wp.tid()
+    env = boat_env[boat]
+    nearest = search
+    if env >= 0:
+        position = scene.boat_position[boat]
+        rotation = scene.boat_orientation[boat]
+        a = position + wp.quat_rotate(rotation, model.stern)
+        b = position + wp.quat_rotate(rotation, model.bow)
+        for k in range(scene.object_start[env], scene.object_start[env + 1]):
+            near = _nearest_to_object(scene, model, k, a, b, search + model.radius)
+            if near.found != 0:
+                gap = wp.length(near.boat_point - near.other_point) - near.reach
+                nearest = wp.min(nearest, wp.max(gap, 0.0))
+    clearance[boat] = nearest

@@ -96,7 +96,8 @@ from ocean_warp.torch_streams import ordered_with_torch
 
 from ..controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
 from ..protocol import BatchedEnv
-from ..sailing_env import DecisionHook, SailingEnv
+from ..decision_hook import DecisionHook
+from ..sailing_env import SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
 from ..training.policy_io import CheckpointError, Policy, load_policy

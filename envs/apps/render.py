@@ -42,7 +42,8 @@ from ocean_warp.perception.scene import Scene, SceneObject
 from ocean_warp.kernels.camera_render import follow_boat
 from ocean_warp.validation import require_in_range, require_int_in_range
 
-from ..sailing_env import DecisionHook, SailingEnv
+from ..decision_hook import DecisionHook
+from ..sailing_env import SailingEnv
 from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission
 from .fleet_scenario import FleetScenario, add_sailing_arguments
 from ..training.policies import shipped_policy_path

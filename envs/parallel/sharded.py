@@ -72,7 +72,7 @@ def shard_bounds(num_envs: int, workers: int) -> list[tuple[int, int]]:
 
 def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.dtype]]:
     """Per-environment shape and dtype of every :class:`EnvBuffers` field for ``task``."""
-    p = POLICY_OBS[ObservationSet(task.observation).value]
+    p = POLICY_OBS[ObservationSet(task.observation).value] + task.lidar_observations
     c = p + PRIVILEGED_OBS
     f32, i32 = torch.float32, torch.int32
     return {"actions": ((3,), f32), "policy_obs": ((p,), f32), "critic_obs": ((c,), f32),
@@ -83,7 +83,8 @@ def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.d
             "orientation": ((4,), f32), "velocity": ((6,), f32), "wind_velocity": ((3,), f32),
             "wind_direction": ((), f32), "propeller_level": ((), i32), "final_position": ((3,), f32),
             "final_orientation": ((4,), f32), "final_return": ((), f32), "final_length": ((), i32),
-            "final_success": ((), f32), "final_status": ((), i32), "final_waypoints": ((), i32)}
+            "final_success": ((), f32), "final_status": ((), i32), "final_waypoints": ((), i32),
+            "obstacles": ((task.obstacle_slots, 4), f32)}
 
 
 # --- the worker side ---------------------------------------------------------------------------------
@@ -313,7 +314,7 @@ class ShardedSailingEnv:
             raise ValueError(f"ShardedSailingEnv.timeout must be a positive number of seconds, got {timeout!r}")
         self.timeout = float(timeout)
         self.task = task
-        self.num_policy_obs = POLICY_OBS[ObservationSet(task.observation).value]
+        self.num_policy_obs = POLICY_OBS[ObservationSet(task.observation).value] + task.lidar_observations
         self.num_critic_obs = self.num_policy_obs + PRIVILEGED_OBS
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period

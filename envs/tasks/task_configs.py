@@ -1,5 +1,6 @@
-"""Sailing tasks as configs: the seed paper's waypoint task, our Waypoint+, the BCDACA mission, and the
-mission under sail alone.
+"""Sailing tasks as configs: the seed paper's waypoint task, our Waypoint+, the BCDACA mission, the
+mission under sail alone, and the avoidance task (a waypoint through a field of buoys and piles, seen with
+a lidar), with and without the propeller.
 
 A task is this config plus the kernels of ``ocean_warp.envs.tasks.task_kernels``; ``SailingEnv`` runs any of
 them. Every task has the same three actions, each in [-1, 1] (the seed's):
@@ -20,15 +21,20 @@ import dataclasses
 import enum
 import math
 
+from ocean_warp.contact import ContactConfig
 from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Profile
 from ocean_warp.ocean_config import OceanConfig
+from ocean_warp.perception.lidar_config import LidarConfig
 from ocean_warp.sensors import SensorConfig
 from ocean_warp.validation import require_choice, require_in_range, require_non_negative, require_positive
 from ocean_warp.water_config import WaterConfig
 from ocean_warp.wind import WindConfig
 
+from .obstacle_layout import ObstacleLayoutConfig
+
 __all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "MissionSailConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name",
+           "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig", "ObstacleLayoutConfig",
+           "avoid_lidar", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name",
            "mission_sea", "mission_simulator", "waypoint_plus_sea"]
 
 MISSION_WAYPOINTS = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}
@@ -134,8 +140,12 @@ class RewardConfig:
     then the seed's propeller term: if r > 0, r *= 1 - propeller_gain |level| / 5, else r -= propeller_cost
     |level|. Plus ``reach_bonus`` per waypoint reached, minus ``lost_penalty`` when the boat is lost,
     minus ``flagged_penalty`` when the simulator flags it (capsized, non-finite, sunk, flying, bad
-    input), minus ``smoothness`` sum((a - a_prev)^2) and ``time_cost`` every decision. The level is the
-    one commanded: 0 on a task without propeller (``TaskConfig.propeller`` False), whatever a0 is."""
+    input) or, instead, ``collision_penalty`` when the flag is a collision; minus ``smoothness``
+    sum((a - a_prev)^2) and ``time_cost`` every decision; and on a task with obstacles, minus the
+    proximity cost ``proximity_cost`` max(0, 1 - g / ``proximity_range``) every decision the boat's
+    capsule is a gap g [m] from the nearest obstacle. The progress and proximity terms count only on
+    decisions that end unflagged. The level is the one commanded: 0 on a task without propeller
+    (``TaskConfig.propeller`` False), whatever a0 is."""
 
     progress_scale: float = 125.0
     """[m] (the seed: 125)."""
@@ -150,13 +160,21 @@ class RewardConfig:
     """Weight of the squared change of the action (0 in the seed)."""
     time_cost: float = 0.0
     """Per decision (0 in the seed)."""
+    collision_penalty: float = 1.0
+    """When the boat touches an obstacle or another boat (``BoatStatus.COLLIDED``), in place of
+    ``flagged_penalty``; the episode ends."""
+    proximity_cost: float = 0.0
+    """Cost per decision of sailing at a gap of 0 from an obstacle (falls linearly to 0 at
+    ``proximity_range``); 0 in the tasks without obstacles."""
+    proximity_range: float = 5.0
+    """Gap [m] beyond which an obstacle costs nothing."""
 
     def __post_init__(self):
         owner = "RewardConfig"
-        object.__setattr__(self, "progress_scale", require_positive(owner, "progress_scale", self.progress_scale,
-                                                                    unit=" [m]"))
+        for name, unit in (("progress_scale", " [m]"), ("proximity_range", " [m]")):
+            object.__setattr__(self, name, require_positive(owner, name, getattr(self, name), unit=unit))
         for field in dataclasses.fields(self):
-            if field.name != "progress_scale":
+            if field.name not in ("progress_scale", "proximity_range"):
                 object.__setattr__(self, field.name, require_non_negative(owner, field.name,
                                                                           getattr(self, field.name)))
 
@@ -213,6 +231,18 @@ class TaskConfig:
     """The boat may use its propeller (a0 sets the level). False: sail only; a0 is ignored, the level
     commanded (and seen by the reward's propeller term) is 0 at every decision; the action space stays
     3-D, as every task's."""
+    obstacles: ObstacleLayoutConfig | None = None
+    """Buoys and piles drawn for every environment at every reset, between the start and the first waypoint
+    (None: open water). Needs ``contact``."""
+    contact: ContactConfig | None = None
+    """Contact of the boats with their environment's obstacles: a touch flags ``BoatStatus.COLLIDED``, which
+    ends the episode with ``reward.collision_penalty``, and the penalty force pushes the boat off."""
+    lidar: LidarConfig | None = None
+    """A lidar on every boat, scanned when the observation is made (at the end of each decision, and again
+    after a reset; its ``rate`` is not used); the policy sees ``lidar_sectors`` values after the observation
+    set's: the nearest return of each sector over the lidar's max range, in [0, 1] (None: no lidar)."""
+    lidar_sectors: int = 24
+    """Equal sectors the lidar's beams are pooled into (a whole divisor of its beams per channel)."""
 
     def __post_init__(self):
         owner = type(self).__name__
@@ -248,6 +278,19 @@ class TaskConfig:
                                                                       -1.0, 1.0, unit=" [m]"))
         if not isinstance(self.propeller, bool):
             raise ValueError(f"{owner}.propeller must be True or False, got {self.propeller!r}")
+        for name, kind in (("obstacles", ObstacleLayoutConfig), ("contact", ContactConfig), ("lidar", LidarConfig)):
+            if getattr(self, name) is not None and not isinstance(getattr(self, name), kind):
+                raise ValueError(f"{owner}.{name} must be a {kind.__name__} or None, got {getattr(self, name)!r}")
+        if self.obstacles is not None and self.contact is None:
+            raise ValueError(f"{owner}.contact must be a ContactConfig when obstacles are drawn (else nothing "
+                             "detects a collision), got None")
+        if self.lidar is not None:
+            beams = self.lidar.beams
+            sectors = self.lidar_sectors
+            if isinstance(sectors, bool) or not isinstance(sectors, int) or not 1 <= sectors <= beams \
+                    or beams % sectors:
+                raise ValueError(f"{owner}.lidar_sectors must be a whole divisor of the lidar's {beams} beams, "
+                                 f"got {sectors!r}")
 
     @property
     def steps_per_decision(self) -> int:
@@ -261,6 +304,16 @@ class TaskConfig:
     @property
     def route_length(self) -> int:
         return 1 if self.route is None else len(self.route)
+
+    @property
+    def lidar_observations(self) -> int:
+        """Values of the policy's observation that come from the lidar (after the observation set's)."""
+        return 0 if self.lidar is None else self.lidar_sectors
+
+    @property
+    def obstacle_slots(self) -> int:
+        """The most obstacles an environment holds (0 without ``obstacles``)."""
+        return 0 if self.obstacles is None else self.obstacles.slots
 
 
 @dataclasses.dataclass(frozen=True)
@@ -332,3 +385,54 @@ class MissionSailConfig(MissionConfig):
 
     propeller: bool = False
     observation: ObservationSet | str = ObservationSet.PLUS
+
+
+def avoid_lidar(**changes) -> LidarConfig:
+    """The avoidance task's lidar: a level 2D scan of 360 beams (1 deg) from the bow mount, 0.2-50 m, exact,
+    with the sea's returns filtered out (on a heeling boat the level beams meet the waves within a few
+    metres; a marine lidar's clutter filter removes them), then ``changes``."""
+    return LidarConfig(**({"beams": 360, "max_range": 50.0, "rate": 1.0, "water_returns": False} | changes))
+
+
+def avoid_simulator() -> EBoatSimulatorConfig:
+    """The avoidance task's simulation: the physics profile's boat, the mission's JONSWAP sea (Hs 0.3 m,
+    Tp 3 s), light gusts (0.5 m/s and 0.05 rad standard deviations), noise-free sensors."""
+    return EBoatSimulatorConfig(boat=EBoatConfig(), ocean=mission_sea(),
+                                wind=WindConfig(gust_speed_std=0.5, gust_direction_std=0.05),
+                                sensors=SensorConfig.noise_free())
+
+
+@dataclasses.dataclass(frozen=True)
+class AvoidConfig(TaskConfig):
+    """Obstacle avoidance: a waypoint 100-200 m away at any bearing through a field of 6-12 buoys and piles
+    (``ObstacleLayoutConfig()``, drawn anew at every reset, clear of the start and the waypoint); the boat
+    starts heading within 45 deg of it; true wind 3-8 m/s from any direction. The policy sees the seed's
+    five values and the lidar's 24 sectors (15 deg each, nearest return / 50 m). The seed's reward, plus a
+    collision penalty of 2 (the episode ends on a touch) and a proximity cost of up to 0.02 per decision
+    within 5 m of an obstacle. Reached within 5 m; lost beyond the leg's length + 25 m; 400 s. The physics
+    profile's boat (mesh hull)."""
+
+    simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=avoid_simulator)
+    episode_time: float = 400.0
+    start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
+        heading_deg=(-45.0, 45.0), heading_step_deg=0.0, heading_toward_waypoint=True, wind_speed=(3.0, 8.0),
+        wind_direction_step_deg=0.0, waypoint_distance=(100.0, 200.0), waypoint_bearing_deg=(-180.0, 180.0),
+        position_jitter=1.0, sheet_deg=(30.0, 60.0)))
+    reward: RewardConfig = dataclasses.field(default_factory=lambda: RewardConfig(
+        collision_penalty=2.0, proximity_cost=0.02, proximity_range=5.0))
+    obstacles: ObstacleLayoutConfig | None = dataclasses.field(default_factory=ObstacleLayoutConfig)
+    contact: ContactConfig | None = dataclasses.field(default_factory=ContactConfig)
+    lidar: LidarConfig | None = dataclasses.field(default_factory=avoid_lidar)
+
+
+@dataclasses.dataclass(frozen=True)
+class AvoidSailConfig(AvoidConfig):
+    """The avoidance task under sail alone: as :class:`AvoidConfig`, with the propeller off (a0 ignored, level
+    0), wind 4-8 m/s and 800 s (a 200 m beat to windward takes the boat about 5 minutes)."""
+
+    propeller: bool = False
+    episode_time: float = 800.0
+    start: StartConfig = dataclasses.field(default_factory=lambda: StartConfig(
+        heading_deg=(-45.0, 45.0), heading_step_deg=0.0, heading_toward_waypoint=True, wind_speed=(4.0, 8.0),
+        wind_direction_step_deg=0.0, waypoint_distance=(100.0, 200.0), waypoint_bearing_deg=(-180.0, 180.0),
+        position_jitter=1.0, sheet_deg=(30.0, 60.0)))

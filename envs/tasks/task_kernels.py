@@ -10,6 +10,7 @@ from __future__ import annotations
 import warp as wp
 
 from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
 
 __all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "BoatView", "StartRows", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions",
@@ -46,6 +47,10 @@ class TaskParameters:
     flagged_penalty: float
     smoothness: float
     time_cost: float
+    collision_penalty: float
+    proximity_cost: float
+    proximity_range: float
+    """[m]"""
     max_episode_length: int
     """Decisions before a time-out."""
     observation_set: int
@@ -255,10 +260,12 @@ def evaluate(
     actions: wp.array2d(dtype=float),
     status: wp.array(dtype=int),
     position: wp.array(dtype=wp.vec3),
+    clearance: wp.array(dtype=float),
     course: Course,
     ends: EpisodeEnds,
 ):
-    """Reward, waypoint progress and the end of the episode after a decision (see ``RewardConfig``)."""
+    """Reward, waypoint progress and the end of the episode after a decision (see ``RewardConfig``);
+    ``clearance``: each boat's gap to the nearest obstacle [m] (the proximity term)."""
     env = wp.tid()
     flags = status[env]
     index = course.target_index[env]
@@ -273,6 +280,8 @@ def evaluate(
     success = False
     if flags != 0:
         r = -task.flagged_penalty
+        if (flags & STATUS_COLLIDED) != 0:
+            r = -task.collision_penalty
         ended = True
     else:
         r = (course.previous_distance[env] - distance) / task.progress_scale
@@ -294,6 +303,7 @@ def evaluate(
         elif distance > leg + task.lost_margin:
             r = r - task.lost_penalty
             ended = True
+        r = r - task.proximity_cost * wp.max(1.0 - clearance[env] / task.proximity_range, 0.0)
     smooth = float(0.0)
     for k in range(3):
         a = actions[env, k]

@@ -16,7 +16,15 @@ from typing import Any
 from ocean_warp.validation import require_in_range, require_int_in_range, require_positive
 
 from ..registration import make_task_config
-from ..tasks.task_configs import MissionConfig, MissionSailConfig, StartConfig, TaskConfig, WaypointPlusConfig
+from ..tasks.task_configs import (
+    AvoidConfig,
+    AvoidSailConfig,
+    MissionConfig,
+    MissionSailConfig,
+    StartConfig,
+    TaskConfig,
+    WaypointPlusConfig,
+)
 
 __all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice"]
 
@@ -190,11 +198,22 @@ def _mission_sail() -> TrainConfig:
     return dataclasses.replace(_mission(), task="EBoatMissionSail-v0", train_task=mission_practice(MissionSailConfig()))
 
 
+def _avoid() -> TrainConfig:
+    return TrainConfig(task="EBoatAvoid-v0", train_task=AvoidConfig(), num_envs_cpu=256, num_envs_cuda=4096,
+                       steps_per_env=32, iterations=300, save_interval=50, ppo=PpoConfig(hidden_dims=(128, 128)))
+
+
+def _avoid_sail() -> TrainConfig:
+    return dataclasses.replace(_avoid(), task="EBoatAvoidSail-v0", train_task=AvoidSailConfig())
+
+
 AGENT_CONFIGS: dict[str, Callable[[], TrainConfig]] = {
     "EBoatWaypoint-v0": _waypoint,
     "EBoatWaypointPlus-v0": _waypoint_plus,
     "EBoatMission-v0": _mission,
     "EBoatMissionSail-v0": _mission_sail,
+    "EBoatAvoid-v0": _avoid,
+    "EBoatAvoidSail-v0": _avoid_sail,
 }
 """The default training config of each task id."""
 

@@ -8,7 +8,8 @@
 """
 
 from .camera import Camera, CameraConfig, CameraHook, ViewCamera, render_view
-from .lidar import BOW_MOUNT, MASTHEAD_MOUNT, Lidar, LidarConfig, LidarHook
+from .lidar import Lidar, LidarHook
+from .lidar_config import BOW_MOUNT, MASTHEAD_MOUNT, LidarConfig
 from .scene import Scene, SceneObject, Shape
 
 __all__ = ["Scene", "SceneObject", "Shape", "LidarConfig", "Lidar", "LidarHook", "BOW_MOUNT", "MASTHEAD_MOUNT",

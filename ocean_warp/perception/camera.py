@@ -22,17 +22,21 @@ from __future__ import annotations
 import dataclasses
 import math
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 import warp as wp
 
-from ..envs.sailing_env import DecisionHook, SailingEnv
+from ..envs.decision_hook import DecisionHook
 from ..frames import quaternion_from_roll_pitch_yaw
 from ..kernels.camera_render import CameraLens, count_decisions, look_at_poses, mounted_camera_poses, render_cameras
 from ..validation import require_finite, require_in_range, require_int_in_range, require_non_negative, require_positive
 from .scene import Scene
 
 __all__ = ["CameraConfig", "Camera", "CameraHook", "ViewCamera", "render_view"]
+
+if TYPE_CHECKING:
+    from ..envs.sailing_env import SailingEnv
 
 MAX_PIXELS_A_SIDE = 8192
 
@@ -245,6 +249,8 @@ class CameraHook(DecisionHook):
 
     def __init__(self, env: SailingEnv, config: CameraConfig | None = None, *, objects=(), scene: Scene | None = None,
                  record: bool = False):
+        from ..envs.sailing_env import SailingEnv  # deferred: the environment imports the sensors' configs
+
         if not isinstance(env, SailingEnv):
             raise ValueError(f"CameraHook: env must be a SailingEnv (it captures inside its decisions), got {env!r}")
         config = config if config is not None else CameraConfig()

@@ -37,7 +37,10 @@ from ..meshes import MeshData, concatenate
 from ..ocean import Ocean
 from ..validation import require_finite, require_positive
 
-__all__ = ["Shape", "SceneObject", "Scene"]
+__all__ = ["Shape", "SceneObject", "Scene", "PARKED_DEPTH"]
+
+PARKED_DEPTH = 1000.0
+"""How far below its environment's origin an empty object row is parked [m] (``Scene.free_slots``)."""
 
 
 class Shape(str, enum.Enum):
@@ -155,15 +158,21 @@ class Scene:
         origins: (envs, 3) world origin of each environment [m] (default: all at 0).
         water_visible: whether rays see the sea.
         boat: the E-Boat whose parts are drawn (default V-C).
+        free_slots: rows each environment keeps after its objects for objects placed on the device later
+            (an obstacle layout drawn at every reset: ``ocean_warp.envs.tasks.obstacle_course``). A free slot
+            holds nothing until a kernel writes it: a sphere of radius 0 parked ``PARKED_DEPTH`` below its
+            environment's origin, which no ray, camera or boat reaches.
     """
 
     def __init__(self, ocean: Ocean, *, envs: int, boat_env, boat_position: wp.array, boat_orientation: wp.array,
                  boom_angle: wp.array, objects: Sequence = (), origins=None, water_visible: bool = True,
-                 boat: EBoatConfig | None = None):
+                 boat: EBoatConfig | None = None, free_slots: int = 0):
         if not isinstance(ocean, Ocean):
             raise ValueError(f"Scene: ocean must be an ocean_warp Ocean, got {type(ocean).__name__}")
         if isinstance(envs, bool) or not isinstance(envs, int) or envs < 1:
             raise ValueError(f"Scene.envs must be a whole number >= 1, got {envs!r}")
+        if isinstance(free_slots, bool) or not isinstance(free_slots, int) or not 0 <= free_slots <= 1024:
+            raise ValueError(f"Scene.free_slots must be a whole number in [0, 1024], got {free_slots!r}")
         if not isinstance(water_visible, bool):
             raise ValueError(f"Scene.water_visible must be True or False, got {water_visible!r}")
         self.ocean, self.envs, self.device = ocean, envs, ocean.device
@@ -186,10 +195,10 @@ class Scene:
         boat_bound = max(float(np.linalg.norm(body.points, axis=1).max()),
                          float(np.linalg.norm(parts.boom_pivot)) + float(np.linalg.norm(boom.points, axis=1).max()))
 
-        flat = [(env, item) for env in range(envs) for item in per_env[env]]
+        flat = [(env, item) for env in range(envs) for item in per_env[env] + [None] * free_slots]
         mesh_ids: dict[int, wp.Mesh] = {}
         for _, item in flat:
-            if item.shape is Shape.MESH and id(item.mesh) not in mesh_ids:
+            if item is not None and item.shape is Shape.MESH and id(item.mesh) not in mesh_ids:
                 mesh_ids[id(item.mesh)] = _wp_mesh(item.mesh, device)
         self._meshes += list(mesh_ids.values())
         count = max(len(flat), 1)  # Warp arrays of length 0 cannot be read; a dummy row is never cast against
@@ -200,6 +209,9 @@ class Scene:
                 "color": np.zeros((count, 3), np.float32), "floats": np.zeros(count, np.int32),
                 "draft": np.zeros(count, np.float32)}
         for k, (env, item) in enumerate(flat):
+            if item is None:
+                anchor[k] = origins[env] - (0.0, 0.0, PARKED_DEPTH)
+                continue
             anchor[k] = origins[env] + np.asarray(item.position)
             quats[k] = (0.0, 0.0, math.sin(0.5 * item.yaw), math.cos(0.5 * item.yaw))
             rows["shape"][k] = _SHAPE_CODES[item.shape]
@@ -209,7 +221,7 @@ class Scene:
             rows["color"][k] = item.color
             rows["floats"][k], rows["draft"][k] = int(item.floats), item.draft
         starts = np.zeros(envs + 1, np.int32)
-        starts[1:] = np.cumsum([len(items) for items in per_env])
+        starts[1:] = np.cumsum([len(items) + free_slots for items in per_env])
         order = np.argsort(np.where(boat_env < 0, envs, boat_env), kind="stable")
         order = order[boat_env[order] >= 0]
         boat_start = np.zeros(envs + 1, np.int32)
@@ -218,7 +230,12 @@ class Scene:
         array = lambda values, dtype: wp.array(values, dtype=dtype, device=device)  # noqa: E731
         self.anchor = array(anchor, wp.vec3)
         """(M,) where each object stands, world frame [m] (a floating one's x, y)."""
-        self._floats, self._draft = array(rows["floats"], int), array(rows["draft"], float)
+        self.floats, self.draft = array(rows["floats"], int), array(rows["draft"], float)
+        """(M,) 1 where an object rides the sea, and how far its frame sits below the surface [m]."""
+        self.free_slots = free_slots
+        self.first_free_slot = starts[1:] - free_slots
+        """(envs,) numpy: the first of each environment's ``free_slots`` rows (they run to the next
+        environment's first row)."""
         grid = ocean.config.resolution
         self.heights = wp.zeros((grid, grid), dtype=float, device=device)
         """(n, n) the sea's height above every grid node at the last :meth:`refresh` [m]."""
@@ -242,13 +259,14 @@ class Scene:
 
     # --- constructors -------------------------------------------------------------------------------
     @classmethod
-    def for_env(cls, env, objects: Sequence = (), *, water_visible: bool = True) -> Scene:
+    def for_env(cls, env, objects: Sequence = (), *, water_visible: bool = True, free_slots: int = 0) -> Scene:
         """The scene of a :class:`~ocean_warp.envs.SailingEnv`: environment i holds boat i, its objects are
-        placed from its origin."""
+        placed from its origin (and ``free_slots`` rows each for objects placed later on the device)."""
         sim = env.simulator
         return cls(sim.ocean, envs=env.num_envs, boat_env=np.arange(env.num_envs), boat_position=sim.state.position,
                    boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=objects,
-                   origins=env.origin.numpy(), water_visible=water_visible, boat=sim.config.boat)
+                   origins=env.origin.numpy(), water_visible=water_visible, boat=sim.config.boat,
+                   free_slots=free_slots)
 
     @classmethod
     def for_simulator(cls, sim, objects: Sequence = (), *, water_visible: bool = True) -> Scene:
@@ -269,7 +287,7 @@ class Scene:
         wp.launch(water_band, dim=self.heights.shape[0], device=device, inputs=[self.heights, self.band])
         if self.object_count:
             wp.launch(float_objects, dim=self.object_count, device=device,
-                      inputs=[self.ocean.surface, self._floats, self._draft, self.anchor],
+                      inputs=[self.ocean.surface, self.floats, self.draft, self.anchor],
                       outputs=[self.view.object_position, self.view.object_orientation])
 
 

@@ -23,7 +23,7 @@ from ocean_warp import Ocean, OceanConfig
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.envs import SailingEnv, WaypointConfig
-from ocean_warp.envs.sailing_env import DecisionHook
+from ocean_warp.envs.decision_hook import DecisionHook
 from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER
 from ocean_warp.meshes import concatenate
 from ocean_warp.perception import Lidar, LidarConfig, LidarHook, Scene, SceneObject, Shape

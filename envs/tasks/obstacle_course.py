@@ -1,0 +1,109 @@
+"""An environment's obstacle course on the device: the layouts drawn at every reset into a scene's free rows,
+the contact that flags and pushes the boats, the lidar whose sectors the policy sees, and each boat's gap to
+the nearest obstacle (the reward's proximity term). ``SailingEnv`` builds one when its task has
+``obstacles`` or a ``lidar``; everything here is launches only, inside the decision's graph.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import warp as wp
+
+from ocean_warp.contact import Contact
+from ocean_warp.device_structs import struct_from
+from ocean_warp.kernels.contact import object_clearances
+from ocean_warp.perception.lidar import Lidar
+from ocean_warp.perception.scene import PARKED_DEPTH, Scene
+
+from .obstacle_kernels import LayoutParameters, ObjectRows, append_sectors, draw_layouts
+from .obstacle_layout import BUOY_COLOR, PILE_COLOR, ObstacleLayoutConfig
+from .task_kernels import PRIVILEGED_OBS
+
+__all__ = ["ObstacleCourse", "OBSTACLE_NONE", "OBSTACLE_BUOY", "OBSTACLE_PILE"]
+
+OBSTACLE_NONE, OBSTACLE_BUOY, OBSTACLE_PILE = 0, 1, 2
+"""The kinds in :attr:`ObstacleCourse.table` (``obstacle_kernels.KIND_*``)."""
+
+
+def _layout_parameters(layout: ObstacleLayoutConfig) -> LayoutParameters:
+    return struct_from(
+        LayoutParameters, layout, count_low=layout.count[0], count_high=layout.count[1],
+        buoy_radius_low=layout.buoy_radius[0], buoy_radius_high=layout.buoy_radius[1],
+        pile_radius_low=layout.pile_radius[0], pile_radius_high=layout.pile_radius[1],
+        pile_half_height=0.5 * layout.pile_height, along_low=layout.along_track[0],
+        along_high=layout.along_track[1], parked_depth=PARKED_DEPTH, buoy_color=wp.vec3(*BUOY_COLOR),
+        pile_color=wp.vec3(*PILE_COLOR))
+
+
+class ObstacleCourse:
+    """The obstacles, contact and lidar of a :class:`~ocean_warp.envs.SailingEnv` whose task has them.
+
+    Attributes:
+        scene: the :class:`~ocean_warp.perception.Scene` of the env's boats, ``task.obstacle_slots`` free rows
+            per environment (rows ``first_row[e]`` on hold environment e's layout).
+        contact: the :class:`~ocean_warp.contact.Contact` force model added to the simulator (None without).
+        lidar: the :class:`~ocean_warp.perception.Lidar` the policy sees through (None without).
+        clearance: (N,) each boat's gap to the nearest obstacle at the last :meth:`sense` [m] (the reward's
+            proximity range where none is nearer; 0 when touching).
+        obstacle_count: (N,) obstacles in each environment's current layout.
+        table: (N, K) vec4 rows x, y from the environment's origin [m], radius [m], kind (``OBSTACLE_*``).
+    """
+
+    def __init__(self, env, clearance: wp.array, policy_column: int):
+        task, device, n = env.task, env.device, env.num_envs
+        self.task, self.device, self.num_envs = task, device, n
+        self.slots = task.obstacle_slots
+        self.scene = Scene.for_env(env, free_slots=self.slots, water_visible=True)
+        self.first_row = wp.array(self.scene.first_free_slot.astype(np.int32), dtype=int, device=device)
+        view = self.scene.view
+        self.rows = struct_from(ObjectRows, shape=view.object_shape, anchor=self.scene.anchor,
+                                position=view.object_position, orientation=view.object_orientation,
+                                size=view.object_size, bound=view.object_bound, color=view.object_color,
+                                floats=self.scene.floats, draft=self.scene.draft)
+        self.layout = None if task.obstacles is None else _layout_parameters(task.obstacles)
+        self.obstacle_count = wp.zeros(n, dtype=int, device=device)
+        self.table = wp.zeros((n, max(self.slots, 1)), dtype=wp.vec4, device=device)
+        """(N, K) every environment's obstacles: x, y from its origin [m], radius [m], kind (``OBSTACLE_*``;
+        a row of zeros: none)."""
+        self.contact = None
+        if task.contact is not None:
+            self.contact = Contact(self.scene, task.contact)
+            env.simulator.simulator.add_model(self.contact)
+        self.clearance = clearance
+        self._boat_env = wp.array(np.arange(n, dtype=np.int32), dtype=int, device=device)
+        self._clearance_model = self.contact.model if self.contact is not None \
+            else Contact(self.scene).model  # the boats' capsule, for the gap even without contact forces
+        self.lidar = None if task.lidar is None else Lidar(task.lidar, self.scene, first_index=env.first_env)
+        self._sectors = None if self.lidar is None else self.lidar.downsampled_array(task.lidar_sectors)
+        self._policy_column, self._critic_column = policy_column, policy_column + PRIVILEGED_OBS
+
+    # --- inside the decision ------------------------------------------------------------------------
+    def draw(self, seed: wp.array, first_env: int, mask: wp.array, course) -> None:
+        """New layouts for the environments of ``mask`` (after ``draw_starts`` wrote their starts)."""
+        if self.layout is None:
+            return
+        wp.launch(draw_layouts, dim=self.num_envs, device=self.device,
+                  inputs=[self.layout, seed, first_env, mask, course, self.first_row, self.rows],
+                  outputs=[self.table, self.obstacle_count])
+
+    def sense(self) -> None:
+        """The scene refreshed (the sea, the buoys on it), a lidar scan and every boat's gap to the nearest
+        obstacle, from the boats' current poses."""
+        self.scene.refresh()
+        if self.lidar is not None:
+            self.lidar.scan()
+        wp.launch(object_clearances, dim=self.num_envs, device=self.device,
+                  inputs=[self.scene.view, self._clearance_model, self._boat_env,
+                          float(self.task.reward.proximity_range)], outputs=[self.clearance])
+
+    def append_observation(self, policy: wp.array, critic: wp.array) -> None:
+        """The lidar's sectors after the observation set's values (policy) and the privileged ones (critic)."""
+        if self._sectors is None:
+            return
+        wp.launch(append_sectors, dim=self._sectors.shape, device=self.device,
+                  inputs=[self._sectors, self._policy_column, self._critic_column], outputs=[policy, critic])
+
+    def restart_streams(self) -> None:
+        """The lidar's noise from its first draw again (``SailingEnv.reset(seed)``)."""
+        if self.lidar is not None:
+            self.lidar.restart_stream()
