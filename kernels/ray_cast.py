@@ -360,7 +360,8 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
     hit.normal = wp.vec3(0.0, 0.0, 1.0)
     for k in range(scene.object_start[env], scene.object_start[env + 1]):
         position = scene.object_position[k]
-        if _misses_bound(position, scene.object_bound[k], origin, direction, hit.t):
+        bound = scene.object_bound[k]
+        if bound <= 0.0 or _misses_bound(position, bound, origin, direction, hit.t):  # bound 0: an empty row
             continue
         shape = scene.object_shape[k]
         size = scene.object_size[k]

@@ -7,6 +7,7 @@ import pathlib
 __all__ = ["SHIPPED_POLICIES", "shipped_policy_path"]
 
 SHIPPED_POLICIES = {
+    "EBoatAvoid-v0": "eboat_avoid.pt",
     "EBoatMission-v0": "eboat_mission.pt",
     "EBoatMissionSail-v0": "eboat_mission_sail.pt",
     "EBoatWaypoint-v0": "eboat_waypoint.pt",

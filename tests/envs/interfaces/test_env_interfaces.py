@@ -288,7 +288,9 @@ def test_single_env_returns_the_final_observation(device):
 
 @pytest.mark.parametrize("task_id", TASK_IDS)
 def test_gymnasium_make_and_make_vec(task_id):
-    policy_size = 15 if task_id in ("EBoatWaypointPlus-v0", "EBoatMissionSail-v0") else 5  # the plus observation
+    # the plus observation's 15 values; the seed's 5 (the avoidance tasks: then the lidar's 24 sectors)
+    policy_size = {"EBoatWaypointPlus-v0": 15, "EBoatMissionSail-v0": 15, "EBoatAvoid-v0": 5 + 24,
+                   "EBoatAvoidSail-v0": 5 + 24}.get(task_id, 5)
     single = gym.make(f"ocean_warp/{task_id}")
     assert isinstance(single.unwrapped, SailingEnvSingle)
     assert single.observation_space.shape == (policy_size,)

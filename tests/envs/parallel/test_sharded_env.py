@@ -20,6 +20,7 @@ from ocean_warp.envs import BatchedEnv, EnvBuffers, SailingEnv, StartConfig, Way
 from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv
 from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 from ocean_warp.envs.parallel.sharded import ShardedSailingEnv, shard_bounds
+from ocean_warp.envs.tasks.task_configs import AvoidConfig
 from ocean_warp.sensors import SensorConfig
 
 COMPARED = tuple(field.name for field in dataclasses.fields(EnvBuffers))
@@ -106,6 +107,30 @@ def test_sharded_env_matches_one_process_step_for_step():
         assert resets >= 10, "the comparison must cross same-step resets"
         log, expected = sharded.episode_log(), single.episode_log()
         assert log.keys() == expected.keys() and all(torch.equal(log[k], expected[k]) for k in log)
+
+
+def test_an_obstacle_course_over_workers_matches_one_process():
+    """The avoidance task (layouts drawn per environment at every reset, the lidar's sectors in the observation,
+    contact) over 2 workers against one SailingEnv: every buffer bit for bit, the obstacle tables (5, 12, 4)
+    included, through same-step resets (2 s episodes) and a re-seeded reset."""
+    base = AvoidConfig()
+    simulator = dataclasses.replace(base.simulator,
+                                    boat=dataclasses.replace(base.simulator.boat, hydrostatics=Hydrostatics.POINTS))
+    task = dataclasses.replace(base, simulator=simulator, episode_time=2.0)
+    single = SailingEnv(task, 5, device="cpu", seed=4)
+    generator = torch.Generator().manual_seed(2)
+    with ShardedSailingEnv(task, 5, workers=2, seed=4) as sharded:
+        assert sharded.buffers.obstacles.shape == (5, 12, 4) and sharded.buffers.policy_obs.shape == (5, 5 + 24)
+        for step in range(5):
+            if step == 3:
+                single.reset(seed=8)
+                sharded.reset(seed=8)
+            actions = 2.0 * torch.rand(5, 3, generator=generator) - 1.0
+            single.step(actions)
+            sharded.step(actions)
+            for name in COMPARED:
+                assert torch.equal(getattr(single.buffers, name), getattr(sharded.buffers, name)), (step, name)
+        assert bool((single.buffers.obstacles[:, :, 3] > 0).any())
 
 
 def test_shared_ocean_follows_sea_state_changes_and_every_substep_updates():
