@@ -23,7 +23,7 @@ from ocean_warp.eboat import Hydrostatics
 from ocean_warp.eboat.simulator_config import still_water
 from ocean_warp.envs import SailingEnv, WaypointConfig
 from ocean_warp.envs.interfaces.gym_env import SailingEnvSingle, SailingVectorEnv
-from ocean_warp.envs.registration import TASK_IDS, register_envs
+from ocean_warp.envs.registration import TASK_IDS, make_task_config, register_envs
 from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 
 START_DISTANCE_OBS = 2.0 * 100.0 / 125.0 - 1.0
@@ -380,3 +380,35 @@ def test_envs_import_without_sb3():
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr[-2000:]
+
+
+# --- the avoidance tasks through every interface --------------------------------------------------
+
+
+@pytest.mark.parametrize("task_id", ["EBoatAvoid-v0", "EBoatAvoidSail-v0"])
+def test_avoid_tasks_through_every_interface(task_id, one_torch_thread):
+    """The registered avoidance tasks (mesh hull, obstacles, contact, lidar) pass gymnasium's ``check_env``
+    and run through rsl-rl's and SB3's adapters: 5 seed values + 24 lidar sectors for the policy, the
+    critic's 12 privileged values on top, and the lidar's sectors (nearest return / 50 m) in [0, 1]."""
+    policy_size, critic_size = 5 + 24, 5 + 12 + 24
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the unbounded observation Box is deliberate
+        check_env(SailingEnvSingle(task_id, max_episode_steps=4))
+
+    env = RslRlVecEnv.from_task(make_task_config(task_id), num_envs=2, seed=3)
+    observations = env.get_observations()
+    assert observations["policy"].shape == (2, policy_size) and observations["critic"].shape == (2, critic_size)
+    observations, rewards, dones, extras = env.step(torch.tensor([[0.5, 0.0, 0.1], [-0.2, 0.3, -0.4]]))
+    sectors = observations["policy"][:, 5:]
+    assert torch.all((sectors >= 0.0) & (sectors <= 1.0)) and torch.all(torch.isfinite(rewards))
+    torch.testing.assert_close(observations["critic"][:, 17:], sectors, rtol=0.0, atol=0.0)
+
+    pytest.importorskip("stable_baselines3")
+    from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
+
+    vec = Sb3VecEnv(task_id, num_envs=2, seed=5, max_episode_steps=2)
+    obs = vec.reset()
+    assert obs.shape == (2, policy_size) and obs.dtype == np.float32
+    for _ in range(2):
+        obs, rewards, dones, infos = vec.step(np.tile([0.4, 0.0, 0.0], (2, 1)).astype(np.float32))
+    assert dones.all() and all(info["terminal_observation"].shape == (policy_size,) for info in infos)
