@@ -2,6 +2,11 @@
 shipped policy and the rest with the classical autopilot, all in one batch; it writes the USD stage (with
 a preview PNG), the trajectory picture and the results table, and prints a summary.
 
+``--task ID`` sails another registered task (as ``ocean-warp eval --task``): its shipped policy takes the
+policy's share of the boats, or, for a task without one, the autopilot sails every boat (said in one line).
+On a task with obstacles the stage shows each boat's buoys and piles of its first episode and the
+trajectory picture each run's obstacles (``ocean_warp.envs.apps.demo_stage``).
+
 On the CPU the fleet floats on the seed twin's four-point buoyancy by default (``hull="auto"``): the
 per-triangle mesh hull costs about 30 times more, too much for a demo of a few minutes on two cores.
 On a GPU it uses the mesh hull.
@@ -23,15 +28,16 @@ from ocean_warp.devices import resolve_device
 from ocean_warp.validation import require_in_range, require_positive
 
 from ..sailing_env import SailingEnv
-from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
+from .fleet_scenario import (FleetScenario, add_scenario_arguments, controller_observation, scenario_arguments,
+                             shipped_policy_or_none)
 from .evaluation import (
+    DEFAULT_TASK,
     AutopilotController,
     FleetController,
     MissionEvaluation,
     PolicyController,
     sail_mission,
 )
-from ..training.policies import shipped_policy_path
 from ..training.policy_io import load_policy
 
 __all__ = ["DemoConfig", "DemoResult", "demo_task", "run_demo", "main"]
@@ -44,7 +50,8 @@ class DemoConfig(FleetScenario):
     """At most this many ocean mesh vertices along a side: the area grows where boats got lost, so the
     demo keeps the mesh finer than a plain scenario's 64 (a loop of 121 frames, a few MB)."""
     policy_share: float = 0.5
-    """Fraction of the boats sailed by the shipped policy (the first ones); the rest by the autopilot."""
+    """Fraction of the boats sailed by the task's shipped policy (the first ones); the rest by the autopilot
+    (every boat, on a task without a shipped policy)."""
     time_limit: float = 1200.0
     """Per boat [s]; a boat still sailing then counts as timed out."""
     loop_period: float = 60.0
@@ -63,6 +70,9 @@ class DemoConfig(FleetScenario):
 
     @property
     def policy_boats(self) -> int:
+        """Boats the shipped policy sails: the policy's share, or 0 on a task without a shipped policy."""
+        if shipped_policy_or_none(self.task_id) is None:
+            return 0
         return int(round(self.policy_share * self.boats))
 
 
@@ -84,9 +94,11 @@ class DemoResult:
         return self.simulated_boat_seconds / self.sail_wall_s if self.sail_wall_s > 0 else math.nan
 
 
-def demo_task(config: DemoConfig, device) -> object:
-    """The mission the demo sails: the scenario's course task with the demo's time limit and loop."""
-    return config.task(time_limit=config.time_limit, loop_period=config.loop_period, device=device)
+def demo_task(config: DemoConfig, device, observation=None) -> object:
+    """The task the demo sails (by default the mission): the scenario's task with the demo's time limit and
+    loop (``observation``: the policy's set, None the task's)."""
+    return config.task(time_limit=config.time_limit, loop_period=config.loop_period, device=device,
+                       observation=observation)
 
 
 def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike = "out/demo",
@@ -98,15 +110,15 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
     object with ``record(time_s, frames)``, ``abort()`` and ``close() -> dict[str, str]`` (files written).
     """
     out = os.fspath(out)
-    task = demo_task(config, device)
-    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
     policy_mask = np.arange(config.boats) < config.policy_boats
     groups = []
     if policy_mask.any():
-        groups.append((PolicyController(load_policy(shipped_policy_path("EBoatMission-v0"))), policy_mask))
+        groups.append((PolicyController(load_policy(shipped_policy_or_none(config.task_id))), policy_mask))
     if not policy_mask.all():
         groups.append((AutopilotController(), ~policy_mask))
     fleet = FleetController(groups, name="fleet")
+    task = demo_task(config, device, controller_observation(fleet))
+    env = SailingEnv(task, config.boats, device=device, seed=config.seed)  # reset: the first episodes drawn
     frames = config.frames_per_second
     recorder = None
     if recorder_factory is None and config.usd:
@@ -135,8 +147,12 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
         results["policy"] = result.subset(policy_mask, "policy")
     if not policy_mask.all():
         results["autopilot"] = result.subset(~policy_mask, "autopilot")
-    settings = {"runs": config.boats, "sea_state": config.sea_state, "wind": config.wind, "seed": config.seed,
-                "device": str(env.device), "time_limit": task.episode_time}
+    low, high = task.start.wind_speed
+    settings = {"runs": config.boats, "sea_state": task.simulator.ocean.significant_wave_height,
+                "wind": low if low == high else None, "seed": config.seed, "device": str(env.device),
+                "time_limit": task.episode_time}
+    if config.task_id != DEFAULT_TASK:
+        settings["task"] = config.task_id  # named in the picture's title (the mission's stays as it was)
     evaluation = MissionEvaluation(task=task, settings=settings, results=results)
     files.update(evaluation.write(out))
     sailed = sum(len(path.propeller) for path in result.paths) * env.decision_period
@@ -145,12 +161,21 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
 
 def _summary(config: DemoConfig, result: DemoResult, hull: str) -> str:
     autopilot_boats = config.boats - config.policy_boats
-    lines = [f"{plural(config.boats, 'E-Boat')} ({config.policy_boats} policy, {autopilot_boats} autopilot), "
-             f"{hull} hull, JONSWAP Hs {config.sea_state} m, wind {config.wind} m/s with gusts, seed {config.seed}"]
+    task = result.evaluation.task
+    low, high = task.start.wind_speed
+    wind = f"{float(low)}" if low == high else f"{low:g}-{high:g}"
+    prefix = "" if config.task_id == DEFAULT_TASK else f"{config.task_id}: "
+    ocean = task.simulator.ocean
+    spectrum = {"jonswap": "JONSWAP", "pierson_moskowitz": "Pierson-Moskowitz"}.get(ocean.spectrum.value,
+                                                                                   ocean.spectrum.value)
+    lines = [f"{prefix}{plural(config.boats, 'E-Boat')} ({config.policy_boats} policy, {autopilot_boats} autopilot), "
+             f"{hull} hull, {spectrum} Hs {float(ocean.significant_wave_height)} m, wind {wind} m/s with gusts, "
+             f"seed {config.seed}"]
     for name, controller in result.evaluation.results.items():
         times = controller.time_s[controller.success]
         timing = (f", mission time {times.mean():.0f} s ({times.min():.0f}-{times.max():.0f})" if times.size else "")
-        lines.append(f"  {name:>9}: {int(controller.success.sum())}/{controller.runs} completed{timing}")
+        collided = f", {int(controller.collided.sum())} collided" if controller.has_obstacles else ""
+        lines.append(f"  {name:>9}: {int(controller.success.sum())}/{controller.runs} completed{collided}{timing}")
     lines.append(f"simulated {result.simulated_boat_seconds:.0f} boat-seconds in {result.sail_wall_s:.1f} s: "
                  f"real-time factor {result.real_time_factor:.0f}")
     lines += [f"wrote {path}" for path in result.files.values()]
@@ -159,12 +184,12 @@ def _summary(config: DemoConfig, result: DemoResult, hull: str) -> str:
 
 def _parser() -> argparse.ArgumentParser:
     defaults = DemoConfig()
-    parser = job_parser("demo", "A fleet of E-Boats sails the BCDACA mission in waves, half with the shipped "
-                        "policy and half with the classical autopilot; writes a USD stage with a preview PNG, "
-                        "trajectories.png and results.csv.")
+    parser = job_parser("demo", "A fleet of E-Boats sails the BCDACA mission (or --task) in waves, half with the "
+                        "shipped policy and half with the classical autopilot; writes a USD stage with a preview "
+                        "PNG, trajectories.png and results.csv.")
     add_scenario_arguments(parser, defaults)
     parser.add_argument("--policy-share", type=float, default=defaults.policy_share,
-                        help="fraction of the boats sailed by the policy (0-1)")
+                        help="fraction of the boats sailed by the task's shipped policy (0-1)")
     parser.add_argument("--time-limit", type=float, default=defaults.time_limit, metavar="SECONDS",
                         help="per boat [s]")
     parser.add_argument("--loop-period", type=float, default=defaults.loop_period, metavar="SECONDS",
@@ -182,8 +207,10 @@ def main(argv: list[str] | None = None) -> int:
         config = DemoConfig(**scenario_arguments(args), policy_share=args.policy_share, time_limit=args.time_limit,
                             loop_period=args.loop_period, usd=not args.no_usd)
         device = resolve_device(args.device, name="--device")
+        if config.policy_share > 0.0 and shipped_policy_or_none(config.task_id) is None:
+            print(f"no policy is shipped for {config.task_id}: the autopilot sails every boat")
         os.makedirs(args.out, exist_ok=True)
-    except (ValueError, OSError) as error:  # a bad setting or device; an unusable --out
+    except (ValueError, OSError) as error:  # a bad setting, task or device; an unusable --out
         return report_error(parser.prog, str(error))
     try:
         result = run_demo(config, device=device, out=args.out, progress=not args.no_progress)

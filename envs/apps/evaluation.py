@@ -8,11 +8,14 @@ by a policy and by the classical autopilot, with the paths drawn and the results
     ocean-warp eval --task EBoatWaypoint-v0 --runs 50 --wind 6
 
 --task is any registered task id (``ocean_warp.envs.registration.TASK_IDS``: EBoatWaypoint-v0,
-EBoatWaypointPlus-v0, EBoatMission-v0, EBoatMissionSail-v0; with or without the "ocean_warp/" prefix),
-default EBoatMission-v0. Each run is one environment of ``SailingEnv(<the task's config>)`` and its first
-episode is its result: for the missions, A (0, 0) -> B, C, D, A, C, A, each reached within 5 m; for the
-single-waypoint tasks, the episode toward the waypoint the run drew at its start (its own distance and
-bearing, heading and wind direction, as the task draws them). The sea is the task's with significant
+EBoatWaypointPlus-v0, EBoatMission-v0, EBoatMissionSail-v0, EBoatAvoid-v0, EBoatAvoidSail-v0; with or
+without the "ocean_warp/" prefix), default EBoatMission-v0. Each run is one environment of
+``SailingEnv(<the task's config>)`` and its first episode is its result: for the missions, A (0, 0) -> B,
+C, D, A, C, A, each reached within 5 m; for the single-waypoint tasks, the episode toward the waypoint the
+run drew at its start (its own distance and bearing, heading and wind direction, as the task draws them);
+on the avoidance tasks also through the buoys and piles the run drew at its start (its obstacle layout,
+taken from ``env.buffers.obstacles`` right after the reset, before the first decision), a touch ending it
+(``BoatStatus.COLLIDED``). The sea is the task's with significant
 height --sea-state (default: the task's) and ocean seed --seed; the true wind is the task's, its mean
 speed --wind (default: the task's; a task that draws each start's wind speed from a range, as the
 waypoint tasks do, sails every run at --wind instead); --time-limit replaces the task's episode time.
@@ -28,13 +31,20 @@ assist (``AutopilotConfig.sail_only()``), and the environment ignores any contro
 
 Written into --out (atomically):
   trajectories.png   all runs' paths, one panel per controller (same axes), over the waypoints (each run's
-                     own, in its colour, for the single-waypoint tasks)
+                     own, in its colour, for the single-waypoint tasks); on a task with obstacles, each
+                     run's buoys (orange) and piles (grey) as circles of their true radius at their places
+                     from the run's origin, edged in the run's colour
   results.csv        one row per controller (the table printed at the end)
-  runs.csv           one row per run and controller
+  runs.csv           one row per run and controller; its "end" is how the first episode ended: done,
+                     capsized (BoatStatus.CAPSIZED), collided (BoatStatus.COLLIDED, not capsized), flagged <bits>
+                     (other BoatStatus bits), time-out or lost
   trajectories.npz   the paths: <controller>_x, _y [m from the run's origin], _heading [rad], _propeller
                      (level commanded at each decision), _reached (waypoints reached by each sample), _length
                      (decisions per run); NaN-padded to the longest run; _routes (N, R, 2) [m] each run's
-                     waypoints; route (R, 2) the task's fixed route (tasks that have one), start_point
+                     waypoints; route (R, 2) the task's fixed route (tasks that have one), start_point; on a
+                     task with obstacles, _obstacles (N, K, 4) each run's obstacle table of its first episode
+                     (``env.buffers.obstacles`` after the reset): x, y [m from the run's origin], radius [m],
+                     kind (0 an empty row, 1 a buoy, 2 a pile)
 
 Columns of results.csv:
   controller, runs      the controller; runs sailed
@@ -56,9 +66,11 @@ Columns of results.csv:
                         reaches that distance), the population std across those runs of the offset from
                         the straight leg is taken at each point; the mean over the points, then over the
                         legs completed by at least two runs (NaN if none)
-  capsizes, lost, time_outs
-                        runs that capsized (BoatStatus.CAPSIZED), drifted beyond the leg's length + 25 m
-                        from their waypoint, or reached the time limit
+  capsizes, collisions, lost, time_outs
+                        runs that capsized (BoatStatus.CAPSIZED), touched an obstacle or another boat
+                        (BoatStatus.COLLIDED; 0 on a task without obstacles; a run that capsized and touched
+                        counts in both), drifted beyond the leg's length + 25 m from their waypoint, or
+                        reached the time limit
   motor_use             fraction of decisions with a propeller level other than 0 commanded (as the
                         environment applied it: always 0 on a task without propeller), mean over runs
 """
@@ -91,6 +103,7 @@ from ocean_warp.cli_support import (
 )
 from ocean_warp.fleet import BoatStatus
 from ocean_warp.frames import roll_pitch_yaw
+from ocean_warp.kernels.ray_cast import float_objects
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
@@ -113,7 +126,7 @@ DEFAULT_TASK = "EBoatMission-v0"
 
 TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
                  "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
-                 "lost", "time_outs", "motor_use")
+                 "collisions", "lost", "time_outs", "motor_use")
 """Columns of results.csv (module docstring: their definitions)."""
 RUN_COLUMNS = ("controller", "run", "completed", "end", "time_s", "waypoints", "distance_m", "tacks", "gybes",
                "own_tacks", "own_gybes", "motor_use", "start_x_m", "start_y_m", "start_heading_deg")
@@ -242,8 +255,19 @@ class ControllerResult:
     """(N,) the controller's own tack count, where it keeps one: NaN for the runs of a controller that keeps
     none (in a :class:`FleetController` of several); None where no run's controller keeps one."""
     own_gybes: np.ndarray | None = None
+    obstacles: np.ndarray | None = None
+    """(N, K, 4) each run's obstacles in its first episode (``env.buffers.obstacles`` after the reset): x, y
+    from the run's origin [m], radius [m], kind (0 an empty row, 1 a buoy, 2 a pile:
+    ``ocean_warp.envs.tasks.obstacle_course.OBSTACLE_*``); None (kept as (N, 0, 4)): a task without
+    obstacles."""
 
     def __post_init__(self):
+        runs = len(self.paths)
+        obstacles = np.zeros((runs, 0, 4)) if self.obstacles is None else np.asarray(self.obstacles, np.float64)
+        if obstacles.ndim != 3 or obstacles.shape[0] != runs or obstacles.shape[2] != 4:
+            raise ValueError(f"ControllerResult.obstacles must be ({runs}, K, 4) (x, y, radius, kind per run and "
+                             f"row), got shape {obstacles.shape}")
+        self.obstacles = obstacles
         self.distance_m = np.array([path_length(p.xy) for p in self.paths])
         crossings = np.array([wind_crossings(p.heading, w) for p, w in zip(self.paths, self.wind_direction)],
                              dtype=np.int64).reshape(-1, 2)
@@ -277,11 +301,22 @@ class ControllerResult:
                                 time_s=self.time_s[index], waypoints=self.waypoints[index], status=self.status[index],
                                 time_out=self.time_out[index], wind_direction=self.wind_direction[index],
                                 routes=self.routes[index], start_point=self.start_point, own_tacks=pick(self.own_tacks),
-                                own_gybes=pick(self.own_gybes))
+                                own_gybes=pick(self.own_gybes), obstacles=self.obstacles[index])
 
     @property
     def capsized(self) -> np.ndarray:
         return (self.status & BoatStatus.CAPSIZED) != 0
+
+    @property
+    def collided(self) -> np.ndarray:
+        """(N,) bool: the first episode ended with the boat touching an obstacle or another boat
+        (``BoatStatus.COLLIDED``)."""
+        return (self.status & BoatStatus.COLLIDED) != 0
+
+    @property
+    def has_obstacles(self) -> bool:
+        """The runs sailed among obstacles (a task with an obstacle layout)."""
+        return self.obstacles.shape[1] > 0
 
     @property
     def lost(self) -> np.ndarray:
@@ -289,9 +324,13 @@ class ControllerResult:
         return ~self.success & ~self.time_out & (self.status == 0)
 
     def end(self, run: int) -> str:
+        """How run ``run``'s first episode ended, for runs.csv: "capsized", "collided" (touched, not
+        capsized), "flagged <bits>" (another BoatStatus), "time-out", "done" or "lost"."""
         status = int(self.status[run])
         if status & BoatStatus.CAPSIZED:
             return "capsized"
+        if status & BoatStatus.COLLIDED:
+            return "collided"
         if status:
             return f"flagged {status}"
         return "time-out" if self.time_out[run] else "done" if self.success[run] else "lost"
@@ -305,7 +344,8 @@ class ControllerResult:
                 "time_std_s": stat(np.std), "time_min_s": stat(np.min), "time_max_s": stat(np.max),
                 "distance_mean_m": float(self.distance_m.mean()), "tacks_mean": float(self.tacks.mean()),
                 "gybes_mean": float(self.gybes.mean()), "cross_track_spread_m": self.cross_track_spread,
-                "capsizes": int(self.capsized.sum()), "lost": int(self.lost.sum()),
+                "capsizes": int(self.capsized.sum()), "collisions": int(self.collided.sum()),
+                "lost": int(self.lost.sum()),
                 "time_outs": int(self.time_out.sum()), "motor_use": float(np.nanmean(self.motor_use))}
 
     def run_rows(self) -> list[dict]:
@@ -379,7 +419,13 @@ class RecordedDecision(DecisionHook):
     ``SailingEnv.step`` launches it (and captured as one graph likewise); the copies are part of the launch
     sequence (graph-safe: fixed slots, no host work). A test checks that it stays step for step the same
     as ``env.step()``. It needs a SailingEnv: it looks inside a decision, which the batched-env protocol
-    does not show (its buffers hold the pose at the end of the decision: ``final_position``)."""
+    does not show (its buffers hold the pose at the end of the decision: ``final_position``).
+
+    On a task with obstacles it also keeps, at each frame, the pose of every object row of the env's
+    obstacle scene (``env.obstacles.scene``): what ``scene.refresh()`` would give there (the floating buoys
+    on the sea of that moment, the piles at their anchors), computed into its own slots with the same
+    kernel (``float_objects``), so that the scene the env's contact and lidar read is left as ``step()``
+    leaves it."""
 
     def __init__(self, env: SailingEnv, frames_per_decision: int = 1):
         if not isinstance(env, SailingEnv):
@@ -401,6 +447,19 @@ class RecordedDecision(DecisionHook):
         """(F * N,) boom angles [rad], positive to port."""
         self.frame_rudder_angle = wp.zeros(frames, dtype=wp.float32, device=device)
         """(F * N,) rudder angles [rad], positive turns to port."""
+        course = env.obstacles
+        self.scene = course.scene if course is not None and course.slots > 0 else None
+        """The env's obstacle scene whose object rows are kept per frame (None: a task without obstacles)."""
+        rows = self.scene.object_count if self.scene is not None else 0
+        self.frame_object_position = wp.zeros(frames_per_decision * rows, dtype=wp.vec3, device=device)
+        """(F * M,) every object row's position [m, world] at the decision's frames, frame-major (M = 0
+        without obstacles)."""
+        self.frame_object_orientation = wp.zeros(frames_per_decision * rows, dtype=wp.quat, device=device)
+        """(F * M,) every object row's orientation (x, y, z, w)."""
+        # One view per frame slot, made here (no allocation inside the captured launches).
+        self._object_slots = [(self.frame_object_position[f * rows:(f + 1) * rows],
+                               self.frame_object_orientation[f * rows:(f + 1) * rows])
+                              for f in range(frames_per_decision)] if rows else []
         self._replayed = ReplayedLaunches(self._launch, device, capture=env.task.simulator.capture_graph)
 
     def _launch(self) -> None:
@@ -411,11 +470,20 @@ class RecordedDecision(DecisionHook):
         n, every = env.num_envs, env.steps_per_decision // self.frames_per_decision
         if (step + 1) % every:
             return
-        state, offset = env.simulator.state, ((step + 1) // every - 1) * n
+        slot = (step + 1) // every - 1
+        state, offset = env.simulator.state, slot * n
         for source, target in ((state.position, self.frame_position), (state.orientation, self.frame_orientation),
                                (state.boom_angle, self.frame_boom_angle),
                                (state.rudder_angle, self.frame_rudder_angle)):
             wp.copy(target, source, dest_offset=offset, count=n)
+        if self._object_slots:
+            scene = self.scene
+            position, orientation = self._object_slots[slot]
+            # As refresh() leaves them: a fixed row keeps its orientation, float_objects writes the rest.
+            wp.copy(orientation, scene.view.object_orientation)
+            wp.launch(float_objects, dim=scene.object_count, device=scene.device,
+                      inputs=[scene.ocean.surface, scene.floats, scene.draft, scene.anchor],
+                      outputs=[position, orientation])
 
     def __call__(self) -> None:
         with ordered_with_torch(self.env.device):
@@ -423,12 +491,19 @@ class RecordedDecision(DecisionHook):
 
     def frames(self) -> dict[str, np.ndarray]:
         """The last decision's frames on the host: "position" (F, N, 3) [m], "orientation" (F, N, 4) xyzw,
-        "boom_angle" and "rudder_angle" (F, N) [rad]."""
+        "boom_angle" and "rudder_angle" (F, N) [rad]; on a task with obstacles also "object_position"
+        (F, M, 3) [m, world] and "object_orientation" (F, M, 4) xyzw of the obstacle scene's M object rows
+        (environment e's layout in rows ``scene.first_free_slot[e]`` on)."""
         f, n = self.frames_per_decision, self.env.num_envs
-        return {"position": self.frame_position.numpy().reshape(f, n, 3),
-                "orientation": self.frame_orientation.numpy().reshape(f, n, 4),
-                "boom_angle": self.frame_boom_angle.numpy().reshape(f, n),
-                "rudder_angle": self.frame_rudder_angle.numpy().reshape(f, n)}
+        frames = {"position": self.frame_position.numpy().reshape(f, n, 3),
+                  "orientation": self.frame_orientation.numpy().reshape(f, n, 4),
+                  "boom_angle": self.frame_boom_angle.numpy().reshape(f, n),
+                  "rudder_angle": self.frame_rudder_angle.numpy().reshape(f, n)}
+        if self.scene is not None:
+            m = self.scene.object_count
+            frames["object_position"] = self.frame_object_position.numpy().reshape(f, m, 3)
+            frames["object_orientation"] = self.frame_object_orientation.numpy().reshape(f, m, 4)
+        return frames
 
 
 def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = False, frames_per_decision: int = 1,
@@ -436,7 +511,8 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
     """Restart ``env`` (any :class:`~ocean_warp.envs.protocol.BatchedEnv`) from its seed
     (``env.reset(seed=env.seed)``: the same starts, waves and gusts every time) and let ``controller`` sail
     every run until its first episode ends; record the paths from the env's buffers. Any task: a run's
-    waypoints are the task's route, or the one it drew at its start (single-waypoint tasks).
+    waypoints are the task's route, or the one it drew at its start (single-waypoint tasks); its obstacles
+    (a task with an obstacle layout) are the table ``env.buffers.obstacles`` holds right after the reset.
 
     ``on_decision(k, decision)``, if given, is called after decision k (0, 1, ...) with a
     :class:`RecordedDecision` (``env`` must then be a SailingEnv), whose ``frames()`` hold
@@ -448,6 +524,7 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
     b = env.buffers
     host = lambda tensor: tensor.cpu().numpy()  # noqa: E731
     routes = host(b.route)[:, :, :2].astype(np.float64)  # the first episodes' waypoints, drawn by the reset
+    obstacles = host(b.obstacles).astype(np.float64)  # and their obstacle layouts, before a reset redraws them
     n, limit = env.num_envs, env.max_episode_length
     origin = host(b.origin)[:, :2].astype(np.float64)
     xy = np.full((limit + 1, n, 2), np.nan)
@@ -512,7 +589,7 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
     return ControllerResult(name=controller.name, paths=paths, success=outcome["success"], time_s=outcome["time_s"],
                             waypoints=outcome["waypoints"], status=outcome["status"], time_out=outcome["time_out"],
                             wind_direction=wind_direction, routes=routes,
-                            start_point=np.array(env.task.start_point, dtype=np.float64), **own)
+                            start_point=np.array(env.task.start_point, dtype=np.float64), obstacles=obstacles, **own)
 
 
 def _kept_counts(values: np.ndarray) -> np.ndarray | None:
@@ -567,13 +644,16 @@ def mission_task(*, sea_state: float = 0.3, wind: float = 10.0, seed: int = 0, t
 
 def _course_text(task: TaskConfig) -> str:
     """What a task's runs sail, in words: "BCDACA", "one waypoint per run" or "a route of R waypoints",
-    followed by "under sail alone" for a task without propeller."""
+    followed by "through buoys and piles" for a task with obstacles and "under sail alone" for a task
+    without propeller."""
     if task.route is None:
         course = "one waypoint per run"
     elif tuple(task.route) == BCDACA_ROUTE:
         course = "BCDACA"
     else:
         course = f"a route of {len(task.route)} waypoints"
+    if task.obstacles is not None:
+        course = f"{course} through buoys and piles"
     return course if task.propeller else f"{course} under sail alone"
 
 
@@ -641,6 +721,8 @@ class MissionEvaluation:
             arrays[f"{name}_propeller"] = _padded([p.propeller for p in result.paths], longest - 1)
             arrays[f"{name}_length"] = np.array([len(p.propeller) for p in result.paths])
             arrays[f"{name}_success"] = result.success
+            if result.has_obstacles:
+                arrays[f"{name}_obstacles"] = result.obstacles
         with atomic_output(path, suffix=".npz") as temporary:
             np.savez_compressed(temporary, **arrays)
 
@@ -666,14 +748,17 @@ class MissionEvaluation:
 
 
 def _panel(result: ControllerResult, shared_route: bool, wind_per_run: bool) -> PanelData:
-    """A controller's panel: its paths, titled with its completions and mean time; its runs' own waypoints
-    unless every run shares the route, and their wind directions where each run has its own."""
+    """A controller's panel: its paths, titled with its completions (and collisions, among obstacles) and
+    mean time; its runs' own waypoints unless every run shares the route, their wind directions where each
+    run has its own, and their obstacles where the task has them."""
     summary = result.summary()
     mean = summary["time_mean_s"]
     timing = f", mean {mean:.0f} s" if math.isfinite(mean) else ""
-    return PanelData(f"{result.name}: {summary['completed']}/{result.runs} completed{timing}",
+    collisions = f", {summary['collisions']} collided" if result.has_obstacles else ""
+    return PanelData(f"{result.name}: {summary['completed']}/{result.runs} completed{collisions}{timing}",
                      [p.xy for p in result.paths], waypoints=None if shared_route else list(result.routes),
-                     wind_directions=result.wind_direction if wind_per_run else None)
+                     wind_directions=result.wind_direction if wind_per_run else None,
+                     obstacles=list(result.obstacles) if result.has_obstacles else None)
 
 
 def _padded(values, size: int) -> np.ndarray:

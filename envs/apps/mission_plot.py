@@ -4,8 +4,9 @@ One panel per controller, side by side on the same axes (metres from each run's 
 each run a thin line (run i has the same colour in every panel: the runs share their starts, waves and
 gusts), the waypoints the runs share labelled, or each run's own waypoints in its colour (tasks whose
 runs draw them), their reach circles dashed, the start marked, and an arrow for the true wind with its
-speed (one per run, in the run's colour, where each run has its own direction). Written with
-matplotlib's Agg backend, atomically.
+speed (one per run, in the run's colour, where each run has its own direction). On a task with obstacles,
+each run's buoys (orange) and piles (grey) are circles of their true radius at their places from the run's
+origin, edged in the run's colour, under the paths. Written with matplotlib's Agg backend, atomically.
 """
 
 from __future__ import annotations
@@ -19,25 +20,44 @@ import numpy as np
 
 from ocean_warp.atomic_files import save_figure
 
-__all__ = ["PanelData", "plot_trajectories"]
+__all__ = ["PanelData", "plot_trajectories", "OBSTACLE_COLORS"]
+
+OBSTACLE_COLORS = {1: "tab:orange", 2: "0.55"}
+"""Fill of an obstacle by kind (1 a buoy, 2 a pile: ``ocean_warp.envs.tasks.obstacle_course.OBSTACLE_*``)."""
+OBSTACLE_NAMES = {1: "buoy", 2: "pile"}
 
 
 class PanelData:
     """What one panel shows: ``title``, and ``paths``, per run (T_i, 2) positions [m]. Optionally, per run
-    i: ``waypoints`` (R_i, 2) its own waypoints [m] (tasks whose runs draw them), and ``wind_directions``
-    (N,) the direction its wind blows toward [rad] (tasks that draw it per run); each drawn in run i's
-    colour."""
+    i: ``waypoints`` (R_i, 2) its own waypoints [m] (tasks whose runs draw them), ``wind_directions``
+    (N,) the direction its wind blows toward [rad] (tasks that draw it per run) and ``obstacles`` (K_i, 4)
+    its obstacle table: x, y [m], radius [m], kind (0 an empty row, left out; 1 a buoy; 2 a pile); each
+    drawn in run i's colour."""
 
     def __init__(self, title: str, paths: Sequence[np.ndarray], waypoints: Sequence[np.ndarray] | None = None,
-                 wind_directions: Sequence[float] | None = None):
+                 wind_directions: Sequence[float] | None = None, obstacles: Sequence[np.ndarray] | None = None):
         self.title = title
         self.paths = [np.asarray(path, dtype=np.float64).reshape(-1, 2) for path in paths]
         self.waypoints = [np.asarray(points, dtype=np.float64).reshape(-1, 2) for points in
                           ([] if waypoints is None else waypoints)]
         self.wind_directions = None if wind_directions is None else np.asarray(wind_directions, dtype=np.float64)
-        for name, values in (("waypoints", self.waypoints), ("wind_directions", self.wind_directions)):
+        self.obstacles = [np.asarray(table, dtype=np.float64).reshape(-1, 4) for table in
+                          ([] if obstacles is None else obstacles)]
+        for name, values in (("waypoints", self.waypoints), ("wind_directions", self.wind_directions),
+                             ("obstacles", self.obstacles)):
             if values is not None and len(values) not in (0, len(self.paths)):
                 raise ValueError(f"PanelData.{name} must have one entry per run ({len(self.paths)}), got {len(values)}")
+        for table in self.obstacles:
+            used = table[table[:, 3] != 0]
+            if not (np.all(np.isfinite(used)) and np.all(used[:, 2] > 0) and np.all(np.isin(used[:, 3], (1, 2)))):
+                raise ValueError("PanelData.obstacles: each row must be x, y [m], radius > 0 [m] and kind 1 (buoy) "
+                                 "or 2 (pile), or all zeros (an empty row)")
+
+    def obstacle_extent(self) -> np.ndarray:
+        """(2 P, 2) the corners of every obstacle's bounding square [m] (for the axes' limits)."""
+        rows = [table[table[:, 3] != 0] for table in self.obstacles]
+        rows = np.concatenate(rows) if rows else np.zeros((0, 4))
+        return np.concatenate([rows[:, :2] - rows[:, 2:3], rows[:, :2] + rows[:, 2:3]])
 
 
 def plot_trajectories(panels: Sequence[PanelData], path: str | os.PathLike, *, waypoints: Mapping[str, tuple],
@@ -66,7 +86,8 @@ def plot_trajectories(panels: Sequence[PanelData], path: str | os.PathLike, *, w
     shared = np.array(list(waypoints.values()), dtype=np.float64).reshape(-1, 2)
     own = [points for panel in panels for points in panel.waypoints]
     finite = [p[np.all(np.isfinite(p), axis=1)] for panel in panels for p in panel.paths]
-    everything = np.vstack([shared, *own, np.asarray(start, dtype=np.float64).reshape(1, 2), *finite])
+    obstacles = [panel.obstacle_extent() for panel in panels]
+    everything = np.vstack([shared, *own, np.asarray(start, dtype=np.float64).reshape(1, 2), *finite, *obstacles])
     low, high = everything.min(axis=0), everything.max(axis=0)
     pad = 0.08 * float(max(high - low)) + reach_radius
     low, high = low - pad, high + pad
@@ -79,6 +100,7 @@ def plot_trajectories(panels: Sequence[PanelData], path: str | os.PathLike, *, w
     colours = plt.get_cmap("tab20")
     run_colour = lambda i: colours(i % 20)  # noqa: E731
     for ax, panel in zip(axes[0], panels):
+        _obstacles(ax, panel.obstacles, run_colour)
         for i, run in enumerate(panel.paths):
             ax.plot(run[:, 0], run[:, 1], lw=0.7, alpha=0.85, color=run_colour(i))
         for name, (x, y) in waypoints.items():
@@ -104,6 +126,23 @@ def plot_trajectories(panels: Sequence[PanelData], path: str | os.PathLike, *, w
         fig.suptitle(textwrap.fill(suptitle, width=max(40, int(13 * width))), fontsize=10)
     fig.tight_layout()
     save_figure(fig, path, dpi=120)
+
+
+def _obstacles(ax, tables: Sequence[np.ndarray], run_colour) -> None:
+    """Every run's obstacles (``tables``: per run i, (K_i, 4) rows x, y [m], radius [m], kind) as filled
+    circles of their radius, buoys orange and piles grey, edged in run i's colour, beneath the paths; one
+    legend entry per kind drawn."""
+    from matplotlib.patches import Circle
+
+    drawn = set()
+    for i, table in enumerate(tables):
+        for x, y, radius, kind in table[table[:, 3] != 0]:
+            drawn.add(int(kind))
+            ax.add_patch(Circle((x, y), radius, facecolor=OBSTACLE_COLORS[int(kind)], edgecolor=run_colour(i),
+                                lw=0.6, alpha=0.9, zorder=1.5))
+    for kind in sorted(drawn):  # legend entries alone (empty), edged neutrally: the edges are the runs' colours
+        ax.scatter([], [], marker="o", s=40, facecolor=OBSTACLE_COLORS[kind], edgecolor="0.2", lw=0.6,
+                   label=OBSTACLE_NAMES[kind])
 
 
 def _waypoint(ax, point, reach_radius: float, *, circle, dot, ms: float, lw: float) -> None:

@@ -6,11 +6,20 @@ sky, water with Fresnel reflections, lit boats and buoys), on the CPU or a GPU.
     ocean-warp render --autopilot --boats 4 --device cuda:0 --out out/autopilot.mp4
     ocean-warp render --policy out/train/policy.pt --out out/policy.mp4
 
-The run is the demo's: the fleet on the BCDACA course in a JONSWAP sea, the first --policy-share of the
-boats sailed by the shipped mission policy and the rest by the classical autopilot (or every boat by
---policy FILE, or by the --autopilot), every boat on the same water; the route's waypoints float as buoys.
+The run is the demo's: the fleet on the BCDACA course (or --task ID, any registered task, as ``ocean-warp
+eval --task``) in a JONSWAP sea, the first --policy-share of the boats sailed by the task's shipped policy
+and the rest by the classical autopilot (every boat by the autopilot on a task without a shipped policy,
+said in one line; or every boat by --policy FILE, or by the --autopilot), every boat on the same water.
+The route's waypoints float as buoys (on a task whose boats draw their own waypoint: each boat's first
+one). On a task with obstacles (EBoatAvoid-v0, EBoatAvoidSail-v0) the camera casts through the env's own
+obstacle scene (``env.obstacles.scene``): the first boat's environment, that boat among its buoys and piles
+as the env draws them at every reset (the waves moving the buoys at every frame); the other boats sail
+their own courses and are not in that view, nor are the waypoint buoys (the scene holds none). Refreshing
+that scene at every frame also moves the buoys the env's contact sees within the decision, so a rendered
+run can part from an unrendered one where a boat touches a buoy.
 The camera is --camera chase (astern of and above the fleet's first boat, following it smoothly) or
-fixed (a point south of the course overlooking all of it).
+fixed (a point south of the course overlooking all of it: the route, or the first boat's start, waypoint
+and obstacles).
 
 Frames are taken at --fps frames per second of simulated time, inside each decision of 1 s: after every
 20 / fps of its 20 physics steps of 0.05 s, so --fps must divide 20 (1, 2, 4, 5, 10 or 20). The video
@@ -45,12 +54,12 @@ from ocean_warp.validation import require_in_range, require_int_in_range
 from ..decision_hook import DecisionHook
 from ..sailing_env import SailingEnv
 from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission
-from .fleet_scenario import FleetScenario, add_sailing_arguments
-from ..training.policies import shipped_policy_path
+from .fleet_scenario import (FleetScenario, add_sailing_arguments, checked_task_name, controller_observation,
+                             shipped_policy_or_none)
 from ..training.policy_io import load_policy
 
 __all__ = ["RenderConfig", "RenderResult", "FrameHook", "fleet_controller", "chase_camera", "render_run", "route_buoys",
-           "overlook", "video_path_problem", "main"]
+           "overlook", "render_scene", "video_path_problem", "main"]
 
 CAMERAS = ("chase", "fixed")
 VIDEO_SUFFIXES = (".mp4", ".gif")
@@ -96,7 +105,8 @@ class RenderConfig(FleetScenario):
     autopilot: bool = False
     """The autopilot sails every boat."""
     policy_share: float = 0.5
-    """The demo's mix: the first share of the boats sail the shipped policy, the rest the autopilot."""
+    """The demo's mix: the first share of the boats sail the task's shipped policy, the rest the autopilot
+    (every boat, on a task without a shipped policy)."""
 
     def __post_init__(self):
         super().__post_init__()
@@ -142,35 +152,44 @@ class RenderResult:
 
 def fleet_controller(config: RenderConfig, boats: int):
     """Who sails: the policy at ``config.policy`` (every boat), the autopilot (every boat), or the demo's
-    mix of the shipped mission policy and the autopilot."""
+    mix of the task's shipped policy and the autopilot (the autopilot alone on a task without one)."""
     if config.policy is not None:
         return PolicyController(load_policy(config.policy))
     if config.autopilot:
         return AutopilotController()
-    policy_boats = np.arange(boats) < int(round(config.policy_share * boats))
+    shipped = shipped_policy_or_none(config.task_id)
+    share = config.policy_share if shipped is not None else 0.0
+    policy_boats = np.arange(boats) < int(round(share * boats))
     groups = []
     if policy_boats.any():
-        groups.append((PolicyController(load_policy(shipped_policy_path("EBoatMission-v0"))), policy_boats))
+        groups.append((PolicyController(load_policy(shipped)), policy_boats))
     if not policy_boats.all():
         groups.append((AutopilotController(), ~policy_boats))
     return FleetController(groups, name="fleet")
 
 
-def _course_points(task) -> np.ndarray:
-    """(K, 2) the start and every distinct waypoint of the task's route [m]."""
-    points = [tuple(task.start_point)] + [tuple(point) for point in task.route]
+def _course_points(task, waypoints=None) -> np.ndarray:
+    """(K, 2) the start and every distinct waypoint [m]: of the task's route, or ``waypoints`` (P, 2) [m]
+    where given (the waypoints a task's boats drew)."""
+    route = task.route if waypoints is None else np.asarray(waypoints, dtype=np.float64).reshape(-1, 2)
+    if route is None:
+        raise ValueError("render: a task without a fixed route needs the waypoints its boats drew")
+    points = [tuple(task.start_point)] + [tuple(point) for point in route]
     return np.unique(np.round(np.array(points, dtype=np.float64), 6), axis=0)
 
 
-def route_buoys(task) -> list[SceneObject]:
-    """A floating buoy on the start and each waypoint of ``task``'s route."""
-    return [SceneObject.buoy(point, radius=BUOY_RADIUS, color=BUOY_COLOR) for point in _course_points(task)]
+def route_buoys(task, waypoints=None) -> list[SceneObject]:
+    """A floating buoy on the start and each waypoint of ``task``'s route, or of ``waypoints`` (P, 2) [m]
+    where given (a task whose boats draw their own)."""
+    return [SceneObject.buoy(point, radius=BUOY_RADIUS, color=BUOY_COLOR)
+            for point in _course_points(task, waypoints)]
 
 
-def overlook(task) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+def overlook(task, points=None) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
     """(eye, target) [m] of the fixed camera: south of the course, high enough to see all of it with a
-    60 degree field of view, looking at its centre."""
-    points = _course_points(task)
+    60 degree field of view, looking at its centre. The course: the start and the task's route, or
+    ``points`` (P, 2) [m] where given."""
+    points = _course_points(task) if points is None else np.asarray(points, dtype=np.float64).reshape(-1, 2)
     low, high = points.min(axis=0), points.max(axis=0)
     centre = 0.5 * (low + high)
     reach = float(np.max(high - low)) * 0.5 + 20.0
@@ -277,22 +296,44 @@ def _video(path: str, width: int, height: int, fps: int):
         writer.close()
 
 
+def render_scene(env: SailingEnv) -> tuple[Scene, np.ndarray]:
+    """What the camera sees of ``env`` (just reset: its first episodes), and the course the fixed camera
+    overlooks, (P, 2) world [m]. On a task with obstacles: the env's own obstacle scene
+    (``env.obstacles.scene``, the camera in environment 0: the first boat among its buoys and piles), the
+    course the first boat's start, waypoints and obstacles. Otherwise a scene of the whole fleet in one
+    environment with a buoy on the start and each waypoint (the task's route, or every boat's first
+    waypoint), the course those points."""
+    task = env.task
+    origins = env.origin.numpy()[:, :2].astype(np.float64)
+    route = env.buffers.route.cpu().numpy()[:, :, :2].astype(np.float64) + origins[:, None, :]
+    course = env.obstacles
+    if course is not None and course.slots > 0:
+        table = env.buffers.obstacles.cpu().numpy()[0].astype(np.float64)
+        table = table[table[:, 3] != 0]
+        start = env.buffers.position.cpu().numpy()[0, :2].astype(np.float64)
+        corners = np.concatenate([table[:, :2] - table[:, 2:3], table[:, :2] + table[:, 2:3]]) + origins[0]
+        return course.scene, np.concatenate([start[None, :], route[0], corners])
+    waypoints = None if task.route is not None else route.reshape(-1, 2)
+    return Scene.for_simulator(env.simulator, route_buoys(task, waypoints)), _course_points(task, waypoints)
+
+
 def render_run(config: RenderConfig, out: str | os.PathLike, *, device: str = "cpu", progress: bool = True,
                controller=None) -> RenderResult:
     """Sail ``config``'s run and write its video to ``out`` (.mp4 or .gif); ``controller``: who sails (None:
-    :func:`fleet_controller`)."""
+    :func:`fleet_controller`). The scene: :func:`render_scene`."""
     from tqdm import tqdm
 
     out = os.fspath(out)
-    task = config.task(time_limit=float(config.decisions), loop_period=None, device=device)
-    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
     controller = fleet_controller(config, config.boats) if controller is None else controller
-    scene = Scene.for_simulator(env.simulator, route_buoys(task))
+    task = config.task(time_limit=float(config.decisions), loop_period=None, device=device,
+                       observation=controller_observation(controller))
+    env = SailingEnv(task, config.boats, device=device, seed=config.seed)  # reset: sail_mission's reset draws the same
+    scene, course = render_scene(env)
     view = ViewCamera(scene, config.width, config.height, math.radians(config.field_of_view), max_range=VIEW_RANGE,
                       haze_distance=HAZE_DISTANCE)
     per_decision = int(round(config.frames_per_second * env.decision_period))
     if config.camera == "fixed":
-        view.look_at(*overlook(task))
+        view.look_at(*overlook(task, course))
         hook = FrameHook(env, view, per_decision)
     else:
         hook = FrameHook(env, view, per_decision, chase_camera(env, view, env.decision_period / per_decision))
@@ -369,8 +410,9 @@ def main(argv: list[str] | None = None) -> int:
         config = RenderConfig(boats=args.boats, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                               hull=args.hull, frames_per_second=args.fps, duration=args.duration, width=args.width,
                               height=args.height, field_of_view=args.fov, camera=args.camera, policy=args.policy,
-                              autopilot=args.autopilot, policy_share=args.policy_share)
-    except ValueError as error:
+                              autopilot=args.autopilot, policy_share=args.policy_share,
+                              task_id=checked_task_name(args.task))
+    except ValueError as error:  # a bad setting or task
         return report_error(parser.prog, str(error))
     device = checked_device(parser, args.device)
     problem = None
@@ -383,6 +425,9 @@ def main(argv: list[str] | None = None) -> int:
         controller = fleet_controller(config, config.boats)
     except (ValueError, FileNotFoundError) as error:  # an unusable policy checkpoint, or none shipped
         return report_error(parser.prog, str(error))
+    if config.policy is None and not config.autopilot and config.policy_share > 0.0 \
+            and shipped_policy_or_none(config.task_id) is None:
+        print(f"no policy is shipped for {config.task_id}: the autopilot sails every boat")
     _output_folder(parser, args.out)
     try:
         result = render_run(config, args.out, device=device, progress=not args.no_progress, controller=controller)

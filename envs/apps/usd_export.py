@@ -1,8 +1,17 @@
-"""``ocean-warp export-usd``: record any scenario to a USD stage: a fleet on the BCDACA course in a JONSWAP
-sea, steered by the shipped policy, the classical autopilot or fixed commands, for a given duration.
+"""``ocean-warp export-usd``: record any scenario to a USD stage: a fleet sailing a task (by default the
+BCDACA mission) in a JONSWAP sea, steered by the task's shipped policy, the classical autopilot or fixed
+commands, for a given duration.
 
     ocean-warp export-usd --boats 8 --sea-state 0.5 --wind 8 --duration 120 --controller autopilot \\
         --out out/autopilot.usdc
+    ocean-warp export-usd --task EBoatAvoid-v0 --boats 4 --duration 60 --out out/avoid.usdc
+
+``--task`` is any registered task id (as ``ocean-warp eval --task``; with or without "ocean_warp/"). A task
+whose boats draw their own waypoints shows a buoy at each boat's waypoint; a task with obstacles
+(EBoatAvoid-v0, EBoatAvoidSail-v0) shows each boat's buoys and piles under /World/Objects, the buoys
+riding the waves frame by frame. The stage shows each boat's first episode: a boat whose episode ended is
+held where it ended, with its obstacles (``ocean_warp.envs.apps.demo_stage``). ``--controller policy`` on a
+task without a shipped policy (and without ``--policy``) says so in one line and steers with the autopilot.
 
 ``--fps`` is how many frames are recorded per simulated second; ``--playback-fps`` the stage's time codes
 (and frames) per second, 24 by default, so that Blender (24 fps) plays it in real time.
@@ -26,7 +35,7 @@ from ocean_warp.usd.stage_file import check_stage_path
 from ocean_warp.validation import require_in_range, require_positive
 
 from ..sailing_env import SailingEnv
-from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments
+from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments, shipped_policy_or_none
 from .evaluation import AutopilotController, PolicyController, RecordedDecision
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
@@ -45,11 +54,12 @@ class ExportConfig(FleetScenario):
     duration: float = 120.0
     """Simulated time to record [s] (whole decisions of 1 s)."""
     controller: str = "policy"
-    """"policy" (``policy`` or the shipped one), "autopilot" or "fixed" (``actions`` throughout)."""
+    """"policy" (``policy`` or the task's shipped one), "autopilot" or "fixed" (``actions`` throughout)."""
     actions: tuple[float, float, float] = (0.4, 0.0, 0.0)
     """The fixed commands, each in [-1, 1]: propeller level int(5 a0), sheet (a1 + 1) 45 deg, rudder 60 a2 deg."""
     policy: str | None = None
-    """Path of an exported policy (None: the shipped mission policy)."""
+    """Path of an exported policy (None: the task's shipped policy; ``ValueError`` naming the task where it
+    has none)."""
     loop_period: float | None = None
     """Make the sea repeat every this many seconds and store one loop of it (None: a mesh per frame)."""
     instanced: bool | None = None
@@ -85,27 +95,32 @@ class FixedController:
         env.buffers.actions.copy_(self._actions)
 
 
-def scenario_task(config: ExportConfig, device):
-    """The BCDACA course with the scenario's sea, wind, seed, hull and loop, every boat on the same water."""
-    return config.task(time_limit=max(config.duration, 1.0), loop_period=config.loop_period, device=device)
+def scenario_task(config: ExportConfig, device, observation=None):
+    """The scenario's task (by default the BCDACA mission) with its sea, wind, seed, hull and loop, every boat
+    on the same water; ``observation``: the policy's set (None: the task's)."""
+    return config.task(time_limit=max(config.duration, 1.0), loop_period=config.loop_period, device=device,
+                       observation=observation)
 
 
 def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: str = "cpu", ascii: bool | None = None,
                     progress: bool = True) -> dict[str, str]:
     """Sail the scenario and record it to the stage at ``path``; returns the files written (stage, ocean
-    loop where there is one, preview PNG)."""
+    loop where there is one, preview PNG). The stage shows each boat's first episode (its course and, on a
+    task with obstacles, its obstacle layout: ``demo_stage``)."""
     from tqdm import tqdm
 
     from .demo_stage import MissionStageRecorder
 
-    task = scenario_task(config, device)
-    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
+    observation = None
     if config.controller == "policy":
-        controller = PolicyController(load_policy(config.policy or shipped_policy_path("EBoatMission-v0")))
+        policy = load_policy(config.policy or shipped_policy_path(config.task_id))
+        controller, observation = PolicyController(policy), policy.observation
     elif config.controller == "autopilot":
         controller = AutopilotController()
     else:
         controller = FixedController(config.actions)
+    task = scenario_task(config, device, observation)
+    env = SailingEnv(task, config.boats, device=device, seed=config.seed)
     env.reset(seed=config.seed)
     controller.reset(env)
     decision = RecordedDecision(env, config.frames_per_second)
@@ -140,13 +155,15 @@ PROG = "ocean-warp export-usd"
 def _parser() -> argparse.ArgumentParser:
     d = ExportConfig()
     parser = job_parser(
-        "export-usd", "Record a fleet on the BCDACA course in a JONSWAP sea to a USD stage (Z up, metres), with a "
-        "preview PNG beside it.")
+        "export-usd", "Record a fleet sailing a task (by default the BCDACA mission) in a JONSWAP sea to a USD "
+        "stage (Z up, metres), with a preview PNG beside it; a task with obstacles shows each boat's buoys and "
+        "piles.")
     add_scenario_arguments(parser, d)
     parser.add_argument("--duration", type=float, default=d.duration, metavar="SECONDS", help="simulated time [s]")
     parser.add_argument("--controller", choices=CONTROLLERS, default=d.controller, help="who steers every boat")
     parser.add_argument("--policy", default=argparse.SUPPRESS, metavar="PATH",
-                        help="exported policy (default: the shipped mission policy)")
+                        help="exported policy (default: the task's shipped policy; a task without one is steered "
+                             "by the autopilot, said in one line)")
     parser.add_argument("--actions", type=_actions, default=d.actions, metavar="A0,A1,A2",
                         help="fixed commands in [-1, 1]: propeller int(5 a0), sheet (a1 + 1) 45 deg, rudder 60 a2 deg")
     parser.add_argument("--loop-period", type=float, default=None, metavar="SECONDS",
@@ -178,7 +195,12 @@ def main(argv: list[str] | None = None) -> int:
                               actions=args.actions, policy=getattr(args, "policy", None), loop_period=args.loop_period,
                               instanced=args.instanced, time_codes_per_second=args.playback_fps)
         device = resolve_device(args.device, name="--device")
-    except (ValueError, OSError) as error:  # a bad setting; an unknown device; an unusable --out
+        if config.controller == "policy" and config.policy is None \
+                and shipped_policy_or_none(config.task_id) is None:
+            print(f"no policy is shipped for {config.task_id}: the autopilot steers every boat "
+                  "(--policy PATH steers with one)")
+            config = dataclasses.replace(config, controller="autopilot")
+    except (ValueError, OSError) as error:  # a bad setting or task; an unknown device; an unusable --out
         return report_error(PROG, str(error))
     started = time.perf_counter()
     try:
@@ -190,7 +212,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{PROG}: {error}", file=sys.stderr)
         return 1
     seconds = time.perf_counter() - started
-    print(f"{plural(config.boats, 'boat')} x {config.duration:g} s ({config.controller}) recorded in {seconds:.1f} s")
+    print(f"{plural(config.boats, 'boat')} x {config.duration:g} s of {config.task_id} ({config.controller}) "
+          f"recorded in {seconds:.1f} s")
     for name, path in files.items():
         print(f"wrote {path} ({name}, {os.path.getsize(path) / 2**20:.1f} MiB)")
     return 0

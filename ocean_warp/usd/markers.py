@@ -56,7 +56,8 @@ def _define_buoy(stage, path: str, where, *, radius: float, height: float, name:
 
 
 def define_route(stage, waypoints: np.ndarray, *, labels=None, start=None, start_label: str = "start",
-                 buoy_radius: float = 0.5, buoy_height: float = 2.0, path_width: float = 0.2) -> None:
+                 buoy_radius: float = 0.5, buoy_height: float = 2.0, path_width: float = 0.2,
+                 path: bool = True) -> None:
     """The course, a ``component`` model at :data:`~ocean_warp.usd.paths.ROUTE`:
 
     - buoys: one per distinct place of the waypoints (R, 2) or (R, 3) [m] (a route may visit a place
@@ -65,8 +66,8 @@ def define_route(stage, waypoints: np.ndarray, *, labels=None, start=None, start
       letters; default: their order from 0) give the buoys' display names, the labels at one place joined
       by commas. ``start`` (2,) or (3,) [m], where the boats set off, gets a buoy too (named
       ``start_label``) unless a waypoint is there already.
-    - the path: from ``start`` (if given) through the waypoints in order, a linear BasisCurves of
-      ``path_width`` [m] just above the still water.
+    - the path (unless ``path`` is False): from ``start`` (if given) through the waypoints in order, a
+      linear BasisCurves of ``path_width`` [m] just above the still water.
     """
     points = np.zeros((len(waypoints), 3))
     points[:, : waypoints.shape[1]] = waypoints
@@ -87,7 +88,7 @@ def define_route(stage, waypoints: np.ndarray, *, labels=None, start=None, start
     if start is not None and not any(np.linalg.norm(drawn[0] - place) < SAME_PLACE for place in places):
         _define_buoy(stage, f"{WAYPOINTS}/Waypoint_{len(places):03d}", drawn[0], radius=buoy_radius,
                      height=buoy_height, name=start_label, indices=[])
-    if len(drawn) < 2:
+    if len(drawn) < 2 or not path:
         return
     curve = UsdGeom.BasisCurves.Define(stage, ROUTE_PATH)
     curve.CreateTypeAttr(UsdGeom.Tokens.linear)

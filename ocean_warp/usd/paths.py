@@ -22,7 +22,8 @@ ROUTE_PATH = "/World/Route/Path"
 """The mission path from the start through the waypoints (BasisCurves, linear)."""
 OBJECTS = "/World/Objects"
 """The scene's objects (ocean_warp.perception.SceneObject): ``Object_000``... (an Xform each, a ``component``
-model, holding its mesh ``Shape``); a floating one's pose is time-sampled."""
+model, holding its mesh ``Shape`` with a material of its colour, ``Looks/Object_RRGGBB``; its display name
+the recorder's ``object_labels`` entry, e.g. "boat 3 pile 2"); a floating one's pose is time-sampled."""
 LIDAR = "/World/Lidar"
 """Lidar returns (Points, time-sampled): every hit point of the recorded scans [m], world frame."""
 WIND = "/World/Wind"

@@ -3,6 +3,7 @@
 Everything is read back from the stage file (not from the simulation), so the picture shows what was
 written: the ocean mesh seen from above and coloured by height, each boat's parts as filled outlines
 (hull, keel, boom and sail, rudder, from both layouts: one prim per boat or point instancers), the
+scene's objects under ``/World/Objects`` (buoys, piles: their outlines from above, in their colours), the
 waypoints and the path through them, and the wind's direction.
 """
 
@@ -18,7 +19,7 @@ from matplotlib.figure import Figure
 from pxr import Usd, UsdGeom
 
 from ..atomic_files import atomic_output
-from .paths import FLEET, OCEAN, ROUTE_PATH, WAYPOINTS, WIND, WIND_DIRECTION_ATTRIBUTE, WIND_SPEED_ATTRIBUTE
+from .paths import FLEET, OBJECTS, OCEAN, ROUTE_PATH, WAYPOINTS, WIND, WIND_DIRECTION_ATTRIBUTE, WIND_SPEED_ATTRIBUTE
 
 __all__ = ["render_preview", "MAX_OUTLINED_BOATS"]
 
@@ -166,6 +167,22 @@ def _draw_route(axes, stage, cache) -> None:
         axes.plot(points[:, 0], points[:, 1], "--", color="gold", lw=1.5, zorder=4, label="route")
 
 
+def _draw_objects(axes, stage, time_code, cache: UsdGeom.XformCache) -> None:
+    """The outline from above of every object under :data:`~ocean_warp.usd.paths.OBJECTS`, in its colour."""
+    objects = stage.GetPrimAtPath(OBJECTS)
+    if not objects:
+        return
+    mesh_points = _MeshPoints(time_code)
+    outlines, colors = [], []
+    for mesh in _meshes_below(objects):
+        world = _transform(mesh_points(mesh), cache.GetLocalToWorldTransform(mesh.GetPrim()))
+        outlines.append(_convex_hull(world[:, :2]))
+        colors.append(_mesh_color(mesh, time_code))
+    if outlines:
+        axes.add_collection(PolyCollection(outlines, facecolors=colors, edgecolors="black", linewidths=0.3,
+                                           zorder=6, label=f"{len(outlines)} objects"))
+
+
 def _draw_wind(axes, stage) -> None:
     wind = stage.GetPrimAtPath(WIND)
     if not wind:
@@ -203,6 +220,7 @@ def render_preview(stage_path, png_path=None, *, time_code: float | None = None,
     if not has_ocean:
         axes.set_facecolor((0.75, 0.85, 0.95))
     _draw_route(axes, stage, cache)
+    _draw_objects(axes, stage, code, cache)
     outlines, colors, centres = _boat_shapes(stage, code, cache)
     if outlines:
         axes.add_collection(PolyCollection(outlines, facecolors=colors, edgecolors="black", linewidths=0.4,

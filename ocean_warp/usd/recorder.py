@@ -152,6 +152,7 @@ class StageRecorder:
       where the arrow stands; None: no arrow.
     - ``objects``: :class:`~ocean_warp.perception.SceneObject` s placed in the world (one environment), drawn
       under ``/World/Objects``; the floating ones move with the poses given to :meth:`record`.
+      ``object_labels``: one display name per object (e.g. "boat 3 pile 2"); None: none.
     - ``lidar``: add ``/World/Lidar``, points time-sampled from :meth:`record`'s ``lidar_points``.
     - ``ascii``: text instead of crate (see ``path``); ``save_every``: frames between saves of a crate file.
 
@@ -166,7 +167,8 @@ class StageRecorder:
     def __init__(self, path, *, fps: float, time_codes_per_second: float = TIME_CODES_PER_SECOND,
                  ocean: OceanDrawing | None = None, fleet: FleetDrawing = FleetDrawing(),
                  route: RouteDrawing | None = None, wind: WindArrow | None = None, objects: Sequence = (),
-                 lidar: bool = False, ascii: bool | None = None, save_every: int = 100):
+                 object_labels: Sequence[str] | None = None, lidar: bool = False, ascii: bool | None = None,
+                 save_every: int = 100):
         owner = "StageRecorder"
         self.fps = require_positive(owner, "fps", fps, unit=" [frames/s]")
         self.time_codes_per_second = require_positive(owner, "time_codes_per_second", time_codes_per_second,
@@ -197,6 +199,11 @@ class StageRecorder:
         objects = list(objects)
         if not all(isinstance(item, SceneObject) for item in objects):
             raise ValueError(f"{owner}.objects must be ocean_warp.perception.SceneObjects")
+        if object_labels is not None:
+            object_labels = [str(label) for label in object_labels]
+            if len(object_labels) != len(objects):
+                raise ValueError(f"{owner}.object_labels must name each of the {len(objects)} objects, "
+                                 f"got {len(object_labels)}")
         if not isinstance(lidar, bool):
             raise ValueError(f"{owner}.lidar must be True or False, got {lidar!r}")
 
@@ -214,8 +221,8 @@ class StageRecorder:
                 layout = InstancedFleetWriter if self.instanced else PrimFleetWriter
                 self._fleet = layout(stage, self.boats, prototype, parts)
             if self.route is not None:
-                define_route(stage, self.route, labels=self.route_labels, start=self.route_start)
-            self._objects = ObjectsWriter(stage, objects) if objects else None
+                define_route(stage, self.route, labels=self.route_labels, start=self.route_start, path=route.path)
+            self._objects = ObjectsWriter(stage, objects, labels=object_labels) if objects else None
             self._lidar = LidarPointsWriter(stage) if lidar else None
         except BaseException:
             self._file.abort()

@@ -10,12 +10,18 @@ from pxr import Gf, Kind, Usd, UsdGeom, Vt
 from ..meshes import ellipsoid, tube
 from ..perception.scene import SceneObject, Shape
 from .geometry import define_mesh
+from .materials import Look, bind_look, define_look
 from .paths import LIDAR, OBJECTS
 
 __all__ = ["ObjectsWriter", "LidarPointsWriter", "object_mesh"]
 
 LIDAR_POINT_WIDTH = 0.08
 """Drawn diameter of a lidar return [m]."""
+
+
+def _look_name(color) -> str:
+    """The material of an object of ``color`` (r, g, b in 0-1): ``Object_RRGGBB``, one per colour."""
+    return "Object_" + "".join(f"{round(255 * float(c)):02X}" for c in color)
 
 
 def object_mesh(item: SceneObject):
@@ -29,10 +35,14 @@ def object_mesh(item: SceneObject):
 
 class ObjectsWriter:
     """``objects`` (world positions, one environment) as Xforms under :data:`~ocean_warp.usd.paths.OBJECTS`:
-    fixed objects posed once, floating ones time-sampled by :meth:`write`."""
+    fixed objects posed once, floating ones time-sampled by :meth:`write`; ``labels`` (one per object, or
+    None) their display names."""
 
-    def __init__(self, stage: Usd.Stage, objects: Sequence[SceneObject]):
+    def __init__(self, stage: Usd.Stage, objects: Sequence[SceneObject], labels: Sequence[str] | None = None):
         self.objects = list(objects)
+        if labels is not None and len(labels) != len(self.objects):
+            raise ValueError(f"ObjectsWriter.labels must name each of the {len(self.objects)} objects, "
+                             f"got {len(labels)}")
         root = UsdGeom.Xform.Define(stage, OBJECTS)
         Usd.ModelAPI(root.GetPrim()).SetKind(Kind.Tokens.group)
         self._poses = []
@@ -40,12 +50,15 @@ class ObjectsWriter:
             path = f"{OBJECTS}/Object_{k:03d}"
             xform = UsdGeom.Xform.Define(stage, path)
             Usd.ModelAPI(xform.GetPrim()).SetKind(Kind.Tokens.component)
+            if labels is not None:
+                xform.GetPrim().SetDisplayName(str(labels[k]))
             translate = xform.AddTranslateOp(UsdGeom.XformOp.PrecisionDouble)
             orient = xform.AddOrientOp(UsdGeom.XformOp.PrecisionFloat)
             half_yaw = 0.5 * item.yaw
             translate.Set(Gf.Vec3d(*map(float, item.position)))
             orient.Set(Gf.Quatf(float(np.cos(half_yaw)), 0.0, 0.0, float(np.sin(half_yaw))))
-            define_mesh(stage, f"{path}/Shape", object_mesh(item), color=item.color)
+            shape = define_mesh(stage, f"{path}/Shape", object_mesh(item), color=item.color)
+            bind_look(shape.GetPrim(), define_look(stage, _look_name(item.color), Look(tuple(item.color))))
             self._poses.append((translate, orient) if item.floats else None)
 
     @property

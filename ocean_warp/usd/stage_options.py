@@ -137,6 +137,9 @@ class RouteDrawing:
     start: tuple[float, ...] | None = None
     """(2,) or (3,) [m]: where the boats set off, the first point of the path (e.g. A for the BCDACA
     mission); None: the path starts at the first waypoint."""
+    path: bool = True
+    """Draw the path through the waypoints; False: the buoys alone (waypoints that are no route, e.g. each
+    boat's own waypoint in a single-waypoint task)."""
 
     def __post_init__(self):
         owner = type(self).__name__
@@ -149,6 +152,7 @@ class RouteDrawing:
             _set(self, "labels", tuple(str(label) for label in self.labels))
         if self.start is not None:
             _set(self, "start", _point(_finite_rows(owner, "start", [self.start], (2, 3))[0]))
+        _require_flag(owner, "path", self.path)
 
 
 @dataclasses.dataclass(frozen=True)

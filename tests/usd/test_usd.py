@@ -305,6 +305,9 @@ def _sea(**overrides):
     (lambda: dict(fps=10.0, fleet=FleetDrawing(2, boat="V-C")), r"FleetDrawing\.boat"),
     (lambda: dict(fps=10.0, route=RouteDrawing([1.0, 2.0])), r"RouteDrawing\.points"),
     (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], labels="ABC")), r"RouteDrawing\.labels"),
+    (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], path="no")), r"RouteDrawing\.path"),
+    (lambda: dict(fps=10.0, objects=[ow.perception.SceneObject.buoy((1.0, 2.0))], object_labels=["a", "b"]),
+     r"StageRecorder\.object_labels must name each of the 1 objects, got 2"),
     (lambda: dict(fps=10.0, fleet=FleetDrawing(2), ascii=True), "ascii"),
     (lambda: dict(fps=10.0, wind=WindArrow(math.nan)), r"WindArrow\.direction"),
     (lambda: dict(fps=10.0, wind=WindArrow(0.5, speed=-1.0)), r"WindArrow\.speed"),
@@ -698,8 +701,97 @@ def test_scene_objects_and_lidar_points_in_the_stage(tmp_path, rng):
         np.testing.assert_allclose(sampled, np.delete(points, 1, axis=0), atol=1e-5)
     assert stage.GetPrimAtPath(f"{OBJECTS}/Object_000/Shape").IsA(UsdGeom.Mesh)
     assert validate_stage(path) == []
+    # Each object's colour is a material of its own (for importers that ignore displayColor), and the
+    # preview draws the objects.
+    from pxr import UsdShade
+
+    looks = {str(UsdShade.MaterialBindingAPI(stage.GetPrimAtPath(f"{OBJECTS}/Object_{k:03d}/Shape"))
+                 .ComputeBoundMaterial()[0].GetPath()) for k in range(2)}
+    assert looks == {"/World/Looks/Object_736B66", "/World/Looks/Object_F2731A"}
+    assert render_preview(path).endswith("objects.png")
     with pytest.raises(ValueError, match="made without lidar=True"):
         with StageRecorder(tmp_path / "plain.usda", fps=2.0) as recorder:
             recorder.record(0.0, lidar_points=np.zeros((1, 3)))
     with pytest.raises(ValueError, match="StageRecorder.objects must be"):
         StageRecorder(tmp_path / "bad.usda", fps=2.0, objects=["buoy"])
+
+
+def test_each_boats_obstacles_in_the_stage(tmp_path):
+    """An avoidance task's stage (``MissionStageRecorder``, as export-usd and the demo write it), 2 boats, 3
+    decisions of 1 s at 2 frames a decision, the episodes timing out after 2 s. It holds one prim per
+    obstacle of every boat's first layout (``buffers.obstacles`` after the reset): a pile's mesh of its
+    radius and the layout's 6 m height, standing still from a quarter of it below the still water at the
+    boat's origin + (x, y); a buoy's sphere of its radius riding the waves, its pose at each decision's end
+    that of the env's obstacle scene row (a twin env's after ``step()``, which refreshes the scene), and held
+    at the episode's end while the env draws a new layout. Each boat's own waypoint is a buoy (no path); the
+    stage validates."""
+    import torch
+
+    from ocean_warp.envs import SailingEnv
+    from ocean_warp.envs.apps.demo_stage import MissionStageRecorder
+    from ocean_warp.envs.apps.evaluation import RecordedDecision
+    from ocean_warp.envs.apps.fleet_scenario import fleet_course_task
+    from ocean_warp.usd.paths import OBJECTS, ROUTE_PATH, WAYPOINTS
+
+    def task(time_limit):
+        return fleet_course_task(task="EBoatAvoid-v0", sea_state=0.4, wind=None, seed=2, time_limit=time_limit,
+                                 hull="points", loop_period=None, device="cpu")
+
+    env, twin = SailingEnv(task(2.0), 2, device="cpu", seed=2), SailingEnv(task(10.0), 2, device="cpu", seed=2)
+    for e in (env, twin):
+        e.reset(seed=2)
+    table = env.buffers.obstacles.cpu().numpy().astype(np.float64)
+    np.testing.assert_array_equal(table, twin.buffers.obstacles.cpu().numpy())
+    origins = env.origin.numpy().astype(np.float64)
+    route = env.buffers.route.cpu().numpy()[:, 0, :2] + origins[:, :2]
+    first_row = env.obstacles.scene.first_free_slot
+    recorder = MissionStageRecorder(env, tmp_path / "avoid.usda", frames_per_decision=2, ocean_resolution=8)
+    decision = RecordedDecision(env, 2)
+    actions = torch.tensor([[0.4, 0.0, 0.1], [0.6, 0.2, -0.1]])
+    rows_after = []
+    for k in range(3):
+        env.buffers.actions.copy_(actions)
+        decision()
+        recorder.record(float(k + 1), decision.frames())
+        twin.step(actions)
+        rows_after.append(twin.obstacles.scene.view.object_position.numpy().astype(np.float64).copy())
+    # Both episodes timed out at 2 s and restarted with new layouts, which the stage does not show.
+    assert env.buffers.episode_length.cpu().numpy().tolist() == [1, 1]
+    assert not np.array_equal(env.buffers.obstacles.cpu().numpy(), table)
+    files = recorder.close()
+    stage = Usd.Stage.Open(files["stage"])
+    used = [(e, k) for e in range(2) for k in range(table.shape[1]) if table[e, k, 3] != 0]
+    prims = stage.GetPrimAtPath(OBJECTS).GetChildren()
+    assert len(prims) == len(used) == recorder.object_count > 0
+    tps = stage.GetTimeCodesPerSecond()
+    kinds = set()
+    for prim, (e, k) in zip(prims, used):
+        x, y, radius, kind = table[e, k]
+        kinds.add(int(kind))
+        name = "buoy" if kind == 1 else "pile"
+        assert prim.GetDisplayName() == f"boat {e} {name} {k}"
+        points = np.array(UsdGeom.Mesh(prim.GetChild("Shape")).GetPointsAttr().Get(), dtype=np.float64)
+        assert np.hypot(points[:, 0], points[:, 1]).max() == pytest.approx(radius, abs=1e-5)
+        height = np.ptp(points[:, 2])
+        xform = UsdGeom.Xformable(prim)
+        where = lambda code: np.array(xform.ComputeLocalToWorldTransform(code).ExtractTranslation())  # noqa: E731
+        if kind == 2:
+            assert height == pytest.approx(6.0, abs=1e-5)
+            np.testing.assert_allclose(where(tps), [origins[e, 0] + x, origins[e, 1] + y, 1.5], atol=1e-4)
+            assert not xform.GetOrderedXformOps()[0].GetAttr().GetTimeSamples()
+        else:
+            assert height == pytest.approx(2.0 * radius, abs=1e-5)
+            row = first_row[e] + k
+            for decision_end in (1, 2):
+                np.testing.assert_allclose(where(decision_end * tps), rows_after[decision_end - 1][row], atol=1e-5)
+            np.testing.assert_allclose(where(3.0 * tps), where(2.0 * tps), atol=1e-12)  # held after its episode
+            np.testing.assert_allclose(where(0.5 * tps)[:2], [origins[e, 0] + x, origins[e, 1] + y], atol=1e-4)
+            assert where(0.5 * tps)[2] != where(1.0 * tps)[2]  # riding the waves
+    assert kinds == {1, 2}
+    waypoints = stage.GetPrimAtPath(WAYPOINTS).GetChildren()
+    assert sorted(p.GetDisplayName() for p in waypoints) == ["boat 0", "boat 1"]
+    marks = sorted(np.array(UsdGeom.Xformable(p).ComputeLocalToWorldTransform(0).ExtractTranslation())[:2].tolist()
+                   for p in waypoints)
+    np.testing.assert_allclose(marks, sorted(route.tolist()), atol=1e-4)
+    assert not stage.GetPrimAtPath(ROUTE_PATH)
+    assert validate_stage(files["stage"]) == []

@@ -121,3 +121,55 @@ def test_ctrl_c_ends_a_command_with_one_line_and_code_130(monkeypatch, capsys):
     assert exit_info.value.code == 130
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["ocean-warp demo: interrupted; files written before it are complete"]
+
+
+# --- --task: any registered task, obstacles in the stage --------------------------------------------
+
+def test_export_usd_of_an_avoid_task(tmp_path, capsys):
+    """``export-usd --task ocean_warp/EBoatAvoid-v0``: the task's shipped policy steers, or, where it has none,
+    the autopilot (said in one line); the stage holds every boat's obstacles (one prim each) and validates."""
+    from ocean_warp.envs.training import policies
+    from ocean_warp.usd.paths import OBJECTS
+
+    out = tmp_path / "avoid.usda"
+    cli.main(["export-usd", "--task", "ocean_warp/EBoatAvoid-v0", "--boats", "2", "--duration", "2", "--fps", "1",
+              "--ocean-resolution", "8", "--hull", "points", "--out", str(out), "--no-progress"])
+    printed = capsys.readouterr().out
+    assert ("no policy is shipped for EBoatAvoid-v0" in printed) == ("EBoatAvoid-v0" not in policies.SHIPPED_POLICIES)
+    assert "of EBoatAvoid-v0" in printed
+    stage = Usd.Stage.Open(str(out))
+    objects = stage.GetPrimAtPath(OBJECTS).GetChildren()
+    assert len(objects) >= 2 * 6  # 6-12 obstacles for each boat
+    assert {p.GetDisplayName().split()[2] for p in objects} == {"buoy", "pile"}
+    assert validate_stage(out) == []
+
+
+def test_tiny_demo_of_an_avoid_task(tmp_path):
+    """The demo on EBoatAvoid-v0: its shipped policy's share of the boats, or every boat the autopilot's where
+    it has none; the table has the collisions column, the stage each boat's obstacles."""
+    from ocean_warp.envs.training import policies
+    from ocean_warp.usd.paths import OBJECTS
+
+    config = DemoConfig(boats=2, time_limit=3.0, frames_per_second=1, ocean_resolution=8, loop_period=4.0,
+                        hull="points", task_id="EBoatAvoid-v0")
+    result = run_demo(config, device="cpu", out=tmp_path, progress=False)
+    shipped = "EBoatAvoid-v0" in policies.SHIPPED_POLICIES
+    table = _rows(result.files["results.csv"])
+    assert [row["controller"] for row in table] == (["policy", "autopilot"] if shipped else ["autopilot"])
+    assert all(row["collisions"].isdigit() for row in table)
+    stage = Usd.Stage.Open(result.files["stage"])
+    assert len(stage.GetPrimAtPath(OBJECTS).GetChildren()) >= 2 * 6
+    assert validate_stage(result.files["stage"]) == []
+    for controller in result.evaluation.results.values():
+        assert controller.has_obstacles
+
+
+@pytest.mark.parametrize("job", ["demo", "export-usd"])
+def test_an_unknown_task_is_a_one_line_error(job, tmp_path, capsys):
+    out = tmp_path / ("demo" if job == "demo" else "x.usdc")
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main([job, "--task", "EBoatNowhere-v0", "--out", str(out)])
+    assert exit_info.value.code == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and "--task: unknown task id 'EBoatNowhere-v0'; known: EBoatWaypoint-v0" in error[0], error
+    assert not out.exists()

@@ -42,8 +42,8 @@ from tests.env_buffers import assert_same_buffers
 
 DEG = math.pi / 180.0
 COLUMNS = ["controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
-           "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes", "lost",
-           "time_outs", "motor_use"]
+           "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
+           "collisions", "lost", "time_outs", "motor_use"]
 
 
 def tiny_mission(**changes) -> MissionConfig:
@@ -473,8 +473,12 @@ def test_mission_task_settings():
 
 
 def test_shipped_policy_path(monkeypatch):
-    assert policies.SHIPPED_POLICIES == {"EBoatMission-v0": "eboat_mission.pt", "EBoatWaypoint-v0": "eboat_waypoint.pt",
-                                         "EBoatMissionSail-v0": "eboat_mission_sail.pt"}
+    """The shipped policies include these three (more may be added: the avoidance tasks' later); every
+    shipped one is a registered task's."""
+    assert policies.SHIPPED_POLICIES.items() >= {"EBoatMission-v0": "eboat_mission.pt",
+                                                 "EBoatWaypoint-v0": "eboat_waypoint.pt",
+                                                 "EBoatMissionSail-v0": "eboat_mission_sail.pt"}.items()
+    assert set(policies.SHIPPED_POLICIES) <= set(TASK_IDS)
     with pytest.raises(ValueError, match="no policy is shipped"):
         policies.shipped_policy_path("EBoatWaypointPlus-v0")
     monkeypatch.setitem(policies.SHIPPED_POLICIES, "EBoatMission-v0", "not_there_yet.pt")
@@ -522,6 +526,20 @@ def test_cli_runs_every_task(task_id, tmp_path, capsys):
         assert float(rows[0]["motor_use"]) == 0.0
     _, runs = read_csv(tmp_path / "runs.csv")
     assert all(float(row["time_s"]) == 2.0 for row in runs)
+    # Obstacles: counted in every table (none in 2 s), kept per controller in the NPZ where the task has them,
+    # as the environment drew them at its reset (the same task and seed: the same layout).
+    assert all(int(row["collisions"]) == 0 for row in rows)
+    arrays = np.load(tmp_path / "trajectories.npz")
+    task = evaluation_task(name, time_limit=2.0)
+    for row in rows:
+        if task.obstacles is None:
+            assert f"{row['controller']}_obstacles" not in arrays
+        else:
+            env = SailingEnv(task, 1, device="cpu", seed=0)
+            env.reset(seed=0)
+            obstacles = arrays[f"{row['controller']}_obstacles"]
+            np.testing.assert_array_equal(obstacles, env.buffers.obstacles.cpu().numpy())
+            assert obstacles.shape == (1, task.obstacle_slots, 4) and np.any(obstacles[0, :, 3] != 0)
 
 
 def test_cli_sail_task_ignores_the_policys_propeller(tmp_path, capsys):
@@ -602,3 +620,106 @@ def test_waypoint_task_runs_sail_to_their_own_waypoints(tmp_path):
     np.testing.assert_array_equal(arrays["autopilot_routes"], autopilot.routes)
     np.testing.assert_array_equal(arrays["policy_routes"], policy.routes)
     assert "route" not in arrays
+
+
+# --- obstacles: the collisions column, the "collided" end, the layouts in the files -----------------
+
+def tiny_avoid(**changes):
+    """EBoatAvoid-v0 on the four-point hull and a 16 x 16 sea, without the lidar (cheap on the CPU), with a
+    hand-made course: a waypoint 40 m due east (bearing 0), the boat heading straight at it from the start
+    (no jitter), nearly no wind (0.5 m/s), and one pile of radius 2 m at the middle of the leg, on it."""
+    from ocean_warp.envs.tasks.task_configs import AvoidConfig, ObstacleLayoutConfig
+
+    task = evaluation_task(AvoidConfig(), wind=0.5, seed=0)
+    simulator = dataclasses.replace(
+        task.simulator, boat=dataclasses.replace(task.simulator.boat, hydrostatics=Hydrostatics.POINTS),
+        ocean_every_substep=False,
+        ocean=OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.2, peak_period=3.0))
+    start = dataclasses.replace(task.start, heading_deg=(0.0, 0.0), waypoint_distance=(40.0, 40.0),
+                                waypoint_bearing_deg=(0.0, 0.0), position_jitter=0.0)
+    layout = ObstacleLayoutConfig(count=(1, 1), pile_fraction=1.0, pile_radius=(2.0, 2.0), along_track=(0.5, 0.5),
+                                  cross_track=0.0)
+    return dataclasses.replace(task, **({"simulator": simulator, "start": start, "obstacles": layout, "lidar": None,
+                                         "episode_time": 30.0} | changes))
+
+
+def test_collisions_are_counted_against_a_run_that_hits_a_pile(tmp_path):
+    """Two runs of the hand-made course, a pile of radius 2 m on the leg 20 m ahead: run 0 goes full ahead
+    with the rudder amidships (straight into the pile), run 1 full astern (away from it). Run 0 ends with
+    BoatStatus.COLLIDED where its bow meets the pile, long before the time limit; run 1 does not. The
+    collisions column counts 1, runs.csv ends run 0 "collided", and the files keep the layout the reset drew
+    (the pile where the task puts it), equal to ``buffers.obstacles`` after a reset."""
+    from ocean_warp.envs.apps.evaluation import MissionEvaluation
+    from ocean_warp.envs.apps.usd_export import FixedController
+    from ocean_warp.fleet import BoatStatus
+
+    task = tiny_avoid()
+    fresh = SailingEnv(task, 2, device="cpu", seed=4)
+    fresh.reset(seed=4)
+    table = fresh.buffers.obstacles.cpu().numpy()
+    start = fresh.buffers.position.cpu().numpy()[:, :2] - fresh.buffers.origin.cpu().numpy()[:, :2]
+    waypoint = fresh.buffers.route.cpu().numpy()[:, 0, :2]
+    np.testing.assert_allclose(start, 0.0, atol=1e-5)
+    np.testing.assert_allclose(waypoint, [[40.0, 0.0], [40.0, 0.0]], atol=1e-4)
+    assert table.shape == (2, 1, 4)
+    np.testing.assert_allclose(table[:, 0], [[20.0, 0.0, 2.0, 2.0]] * 2, atol=1e-4)  # the pile, mid-leg
+
+    env = SailingEnv(task, 2, device="cpu", seed=4)
+    ahead, astern = np.array([True, False]), np.array([False, True])
+    fleet = FleetController([(FixedController((1.0, 0.0, 0.0)), ahead), (FixedController((-1.0, 0.0, 0.0)), astern)])
+    result = sail_mission(env, fleet)
+    np.testing.assert_array_equal(result.obstacles, table)
+    np.testing.assert_array_equal(result.collided, [True, False])
+    assert result.status[0] & BoatStatus.COLLIDED and not result.success.any()
+    assert result.end(0) == "collided" and result.end(1) != "collided"
+    assert result.time_s[0] < 20.0  # 16 m at a few m/s
+    # Where it ended: on the leg, short of the pile's surface (2 m from its centre) by less than a hull length
+    # (the bow is 1.3 m ahead of the origin; the contact force stops the boat there and pushes it back a little).
+    final = result.paths[0].xy[-1]
+    assert 2.0 < np.linalg.norm(final - [20.0, 0.0]) < 2.0 + 2.5 and final[0] < 20.0 and abs(final[1]) < 1.0
+    summary = result.summary()
+    assert summary["collisions"] == 1 and summary["capsizes"] == 0
+    assert result.subset(np.array([0]), "ahead").summary()["collisions"] == 1
+
+    evaluation = MissionEvaluation(task=task, settings={"runs": 2, "seed": 4}, results={"fleet": result})
+    paths = evaluation.write(tmp_path)
+    _, rows = read_csv(paths["results.csv"])
+    assert rows[0]["collisions"] == "1" and rows[0]["capsizes"] == "0"
+    _, runs = read_csv(paths["runs.csv"])
+    assert runs[0]["end"] == "collided" and runs[1]["end"] != "collided"
+    arrays = np.load(paths["trajectories.npz"])
+    np.testing.assert_array_equal(arrays["fleet_obstacles"], table)
+    assert "collisions 1" in " ".join(evaluation.format_table().split())
+
+
+def test_a_task_without_obstacles_keeps_its_files():
+    """On the mission every run has an empty obstacle table (N, 0, 4): collisions 0, no obstacles key."""
+    result = sail_mission(SailingEnv(tiny_mission(episode_time=2.0), 2, device="cpu", seed=1), AutopilotController())
+    assert result.obstacles.shape == (2, 0, 4) and not result.has_obstacles
+    assert result.summary()["collisions"] == 0 and not result.collided.any()
+
+
+def test_recorded_decision_keeps_the_obstacle_rows_without_touching_the_env(device):
+    """On a task with obstacles the recorder's decision is still ``env.step()`` (every buffer equal, the
+    obstacle scene's rows too), and its object frames are the scene's rows as ``scene.refresh()`` gives them:
+    at the decision's last frame, those of the stepped env (which refreshes the scene after the physics)."""
+    task = tiny_avoid(episode_time=10.0, obstacles=dataclasses.replace(tiny_avoid().obstacles, count=(3, 5),
+                                                                      pile_fraction=0.5, cross_track=10.0))
+    stepped, recorded = (SailingEnv(task, 2, device=device, seed=3) for _ in range(2))
+    decision = RecordedDecision(recorded, frames_per_decision=2)
+    actions = torch.tensor([[0.6, 0.1, 0.2], [0.3, -0.4, -0.1]], device=stepped.torch_device)
+    for k in range(3):
+        stepped.step(actions)
+        recorded.buffers.actions.copy_(actions)
+        decision()
+        assert_same_buffers(recorded.buffers, stepped.buffers, f"after decision {k}")
+        frames = decision.frames()
+        view = stepped.obstacles.scene.view
+        np.testing.assert_array_equal(recorded.obstacles.scene.view.object_position.numpy(),
+                                      view.object_position.numpy())
+        assert frames["object_position"].shape == (2, 2 * 5, 3)
+        np.testing.assert_array_equal(frames["object_position"][-1], view.object_position.numpy())
+        np.testing.assert_array_equal(frames["object_orientation"][-1], view.object_orientation.numpy())
+    floating = recorded.obstacles.scene.floats.numpy() == 1
+    assert floating.any() and not np.array_equal(frames["object_position"][0][floating, 2],
+                                                 frames["object_position"][1][floating, 2])  # riding the waves

@@ -137,3 +137,77 @@ def test_the_fixed_camera_overlooks_the_course():
     assert target == pytest.approx((70.71, 0.0, 0.0), abs=1e-6)
     assert eye[1] < -71.0 - 50.0 and eye[2] > 30.0
     assert len(render.route_buoys(task)) == 4  # A, B, C and D
+
+
+# --- a task with obstacles: the camera casts through the env's own obstacle scene --------------------
+
+def pile_close_up(env):
+    """(eye, target, row) [m]: 3 m from the surface of environment 0's first pile, 1 m above the still
+    water, looking level at the pile's axis; its row in the env's obstacle scene."""
+    table = env.buffers.obstacles.cpu().numpy()[0].astype(np.float64)
+    piles = np.flatnonzero(table[:, 3] == 2)
+    assert piles.size, "seed 0 draws no pile in environment 0: pick another seed"
+    k = int(piles[0])
+    x, y, radius, _ = table[k]
+    origin = env.origin.numpy()[0].astype(np.float64)
+    centre = origin[:2] + (x, y)
+    start = env.buffers.position.cpu().numpy()[0, :2].astype(np.float64)
+    toward = (start - centre) / np.linalg.norm(start - centre)
+    eye = (*(centre + (radius + 3.0) * toward), 1.0)
+    return eye, (*centre, 1.0), int(env.obstacles.scene.first_free_slot[0]) + k
+
+
+def test_a_frame_of_an_avoid_task_shows_its_obstacles(tmp_path, monkeypatch):
+    """``render_scene`` of EBoatAvoid-v0 is the env's obstacle scene: a ray and the camera's centre pixel from
+    3 m before a pile hit it at 3 m (an object hit), where the fleet scene of the other tasks sees nothing
+    there. ``render_run`` renders through it: its frame from that view (the fixed camera placed there) shows
+    the pile as the camera does (not the open view of the fleet scene)."""
+    from ocean_warp.envs import SailingEnv
+    from ocean_warp.kernels.ray_cast import HIT_OBJECT
+    from ocean_warp.perception.camera import ViewCamera
+    from ocean_warp.perception.scene import Scene
+
+    config = render.RenderConfig(task_id="ocean_warp/EBoatAvoid-v0", boats=2, hull="points", camera="fixed",
+                                 width=33, height=33, field_of_view=40.0, duration=1.0, frames_per_second=1)
+    assert config.task_id == "EBoatAvoid-v0"
+    env = SailingEnv(config.task(time_limit=1.0, loop_period=None, device="cpu"), 2, device="cpu", seed=0)
+    scene, course = render.render_scene(env)
+    assert scene is env.obstacles.scene
+    eye, target, row = pile_close_up(env)
+    hit = scene.cast([eye], [np.subtract(target, eye)], envs=[0])
+    assert hit["kind"][0] == HIT_OBJECT and hit["index"][0] == row
+    assert hit["distance"][0] == pytest.approx(3.0, abs=1e-3)
+    pictures = {}
+    for name, seen in (("obstacles", scene), ("fleet", Scene.for_simulator(env.simulator))):
+        camera = ViewCamera(seen, 33, 33, np.radians(40.0), env=0)
+        camera.look_at(eye, target)
+        camera.render()
+        pictures[name] = (camera.depth_image()[16, 16], camera.image()[16, 16].astype(int))
+    assert pictures["obstacles"][0] == pytest.approx(3.0, abs=1e-3)
+    assert not pictures["fleet"][0] < 10.0  # open water: the horizon, far away
+    monkeypatch.setattr(render, "overlook", lambda task, points=None: (eye, target))
+    result = render.render_run(config, tmp_path / "pile.gif", progress=False, controller=render.AutopilotController())
+    assert result.frames == 1
+    frame = gif_frames(tmp_path / "pile.gif")[0][16, 16].astype(int)
+    assert np.abs(frame - pictures["obstacles"][1]).max() <= 12  # the pile (a GIF's palette: a few levels off)
+    assert np.abs(frame - pictures["fleet"][1]).max() > 30
+
+
+def test_a_gif_of_an_avoid_task(tmp_path, capsys):
+    """``render --task EBoatAvoid-v0`` end to end: every frame, and the autopilot sailing every boat where the
+    task has no shipped policy (said in one line)."""
+    from ocean_warp.envs.training import policies
+
+    out = tmp_path / "avoid.gif"
+    cli.main(["render", "--task", "EBoatAvoid-v0", "--out", str(out), *TINY])
+    assert len(gif_frames(out)) == 2 * 4
+    said = "no policy is shipped for EBoatAvoid-v0" in capsys.readouterr().out
+    assert said == ("EBoatAvoid-v0" not in policies.SHIPPED_POLICIES)
+
+
+def test_an_unknown_task_is_a_one_line_error(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["render", "--task", "EBoatNowhere-v0", "--out", str(tmp_path / "v.gif"), *TINY])
+    line = one_error_line(capsys, 2, exit_info)
+    assert "--task: unknown task id 'EBoatNowhere-v0'; known: EBoatWaypoint-v0" in line
+    assert os.listdir(tmp_path) == []
