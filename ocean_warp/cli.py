@@ -18,6 +18,8 @@ JOBS = {
                    "USD stage"),
     "render": ("ocean_warp.envs.apps.render", "a video (MP4 or GIF) of a fleet's run, ray-traced from a chase or fixed "
                "camera"),
+    "export-policy": ("ocean_warp.ros.policy_export", "a policy checkpoint as ONNX or TorchScript, its observation "
+                      "normalisation inside (the onnx extra for ONNX)"),
 }
 
 
