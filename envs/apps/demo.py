@@ -7,6 +7,10 @@ policy's share of the boats, or, for a task without one, the autopilot sails eve
 On a task with obstacles the stage shows each boat's buoys and piles of its first episode and the
 trajectory picture each run's obstacles (``ocean_warp.envs.apps.demo_stage``).
 
+``--record FILE.mcap`` also writes a rosbag2 MCAP log (ROS 2 message schemas; ``ros2 bag``, Foxglove and
+PlotJuggler open it; the ``mcap`` extra): every boat under ``/eboat_<i>`` (``/eboat`` for one boat), at the
+start and after every decision, log times the simulated time (topics: ``ocean_warp.ros.topics``).
+
 On the CPU the fleet floats on the seed twin's four-point buoyancy by default (``hull="auto"``): the
 per-triangle mesh hull costs about 30 times more, too much for a demo of a few minutes on two cores.
 On a GPU it uses the mesh hull.
@@ -102,12 +106,15 @@ def demo_task(config: DemoConfig, device, observation=None) -> object:
 
 
 def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike = "out/demo",
-             progress: bool = True, recorder_factory=None) -> DemoResult:
+             progress: bool = True, recorder_factory=None, record: str | os.PathLike | None = None) -> DemoResult:
     """Sail the demo's fleet once and write its files into ``out``.
 
     With ``config.usd`` the fleet is recorded into ``out/eboat_fleet.usdc`` (:mod:`.demo_stage`);
     otherwise ``recorder_factory(env, path, frames_per_decision=F)``, if given, makes the recorder: an
     object with ``record(time_s, frames)``, ``abort()`` and ``close() -> dict[str, str]`` (files written).
+    ``record``: also write a rosbag2 MCAP log there (a path ending in .mcap; the ``mcap`` extra), every boat
+    under ``/eboat_<i>`` (``/eboat`` for one boat) at the start and after every decision
+    (``ocean_warp.ros.mcap_log``); its path is ``files["rosbag"]``.
     """
     out = os.fspath(out)
     policy_mask = np.arange(config.boats) < config.policy_boats
@@ -128,19 +135,39 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
                                         **config.stage_options())
     elif recorder_factory is not None:
         recorder = recorder_factory(env, os.path.join(out, "eboat_fleet.usdc"), frames_per_decision=frames)
+    log = None
+    if record is not None:
+        from ocean_warp.ros.mcap_log import McapRecorder
 
-    def record(k: int, decision) -> None:
-        recorder.record((k + 1) * env.decision_period, decision.frames())
+        try:
+            log = McapRecorder(record)
+        except BaseException:
+            if recorder is not None:
+                recorder.abort()
+            raise
+        log.add_metadata("ocean_warp.demo", {f"boat_{i}": "policy" if sails else "autopilot"
+                                             for i, sails in enumerate(policy_mask)})
+
+    def on_decision(k: int, decision) -> None:
+        if recorder is not None:
+            recorder.record((k + 1) * env.decision_period, decision.frames())
+        if log is not None:
+            log.record(env)
 
     started = time.perf_counter()
     try:
-        result = sail_mission(env, fleet, progress=progress, frames_per_decision=frames,
-                              on_decision=None if recorder is None else record)
+        result = sail_mission(env, fleet, progress=progress,
+                              frames_per_decision=frames if recorder is not None else 1,
+                              on_decision=None if recorder is None and log is None else on_decision,
+                              on_start=None if log is None else lambda: log.record(env))
     except BaseException:
-        if recorder is not None:
-            recorder.abort()
+        for writer in (recorder, log):
+            if writer is not None:
+                writer.abort()
         raise
     files = recorder.close() if recorder is not None else {}
+    if log is not None:
+        files["rosbag"] = log.close()
     sail_wall = time.perf_counter() - started
     results = {}
     if policy_mask.any():
@@ -196,6 +223,9 @@ def _parser() -> argparse.ArgumentParser:
                         help="the sea repeats every this many seconds (one seamless loop in the stage)")
     parser.add_argument("--no-usd", action="store_true", help="skip the USD stage and its preview")
     parser.add_argument("--out", default="out/demo", help="folder for the stage, PNGs and tables")
+    parser.add_argument("--record", default=None, metavar="FILE.mcap",
+                        help="also write a rosbag2 MCAP log of the fleet, every boat under /eboat_<i> (needs the "
+                             "mcap extra: pip install 'ocean-warp[mcap]')")
     return parser
 
 
@@ -203,6 +233,13 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of ``ocean-warp demo``; returns the exit code (2 for a bad option)."""
     parser = _parser()
     args = parser.parse_args(argv)
+    if args.record is not None:
+        from ocean_warp.ros.mcap_log import check_record_path
+
+        try:
+            check_record_path(args.record)
+        except (ValueError, ImportError) as error:  # not a .mcap path; the mcap extra missing
+            return report_error(parser.prog, f"--record: {error}")
     try:
         config = DemoConfig(**scenario_arguments(args), policy_share=args.policy_share, time_limit=args.time_limit,
                             loop_period=args.loop_period, usd=not args.no_usd)
@@ -213,7 +250,7 @@ def main(argv: list[str] | None = None) -> int:
     except (ValueError, OSError) as error:  # a bad setting, task or device; an unusable --out
         return report_error(parser.prog, str(error))
     try:
-        result = run_demo(config, device=device, out=args.out, progress=not args.no_progress)
+        result = run_demo(config, device=device, out=args.out, progress=not args.no_progress, record=args.record)
     except OSError as error:  # a file could not be written
         print(f"{parser.prog}: {error}", file=sys.stderr)
         return 1

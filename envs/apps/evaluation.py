@@ -46,6 +46,12 @@ Written into --out (atomically):
                      (``env.buffers.obstacles`` after the reset): x, y [m from the run's origin], radius [m],
                      kind (0 an empty row, 1 a buoy, 2 a pile)
 
+--record FILE.mcap also writes a rosbag2 MCAP log (ROS 2 message schemas; ros2 bag, Foxglove and PlotJuggler
+open it; needs the mcap extra): every controller's runs, each under its own namespace, /<controller>/eboat_<run>
+(/<controller>/eboat for --runs 1), once per decision from the start until the controller's last decision,
+runs that already ended sailing on in new episodes; log times are the simulated time, so the controllers' runs
+lie side by side on one time axis and in one map frame (topics: ocean_warp/ros/topics.py).
+
 Columns of results.csv:
   controller, runs      the controller; runs sailed
   completed             runs that reached all their task's waypoints (the mission's six, a waypoint task's
@@ -83,6 +89,7 @@ import dataclasses
 import logging
 import math
 import os
+import re
 import sys
 from typing import Callable, Protocol
 
@@ -507,7 +514,8 @@ class RecordedDecision(DecisionHook):
 
 
 def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = False, frames_per_decision: int = 1,
-                 on_decision: Callable[[int, RecordedDecision], None] | None = None) -> ControllerResult:
+                 on_decision: Callable[[int, RecordedDecision], None] | None = None,
+                 on_start: Callable[[], None] | None = None) -> ControllerResult:
     """Restart ``env`` (any :class:`~ocean_warp.envs.protocol.BatchedEnv`) from its seed
     (``env.reset(seed=env.seed)``: the same starts, waves and gusts every time) and let ``controller`` sail
     every run until its first episode ends; record the paths from the env's buffers. Any task: a run's
@@ -517,10 +525,13 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
     ``on_decision(k, decision)``, if given, is called after decision k (0, 1, ...) with a
     :class:`RecordedDecision` (``env`` must then be a SailingEnv), whose ``frames()`` hold
     ``frames_per_decision`` frames of every boat from inside it (e.g. for a USD recorder); runs that
-    already ended keep sailing new episodes there."""
+    already ended keep sailing new episodes there. ``on_start()``, if given, is called once after the reset
+    and the controller's, before the first decision (e.g. for a log of the runs' start)."""
     decision = RecordedDecision(env, frames_per_decision) if on_decision is not None else None
     env.reset(seed=env.seed)
     controller.reset(env)
+    if on_start is not None:
+        on_start()
     b = env.buffers
     host = lambda tensor: tensor.cpu().numpy()  # noqa: E731
     routes = host(b.route)[:, :, :2].astype(np.float64)  # the first episodes' waypoints, drawn by the reset
@@ -801,7 +812,8 @@ def _write_csv(path: str, columns, rows) -> None:
 def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int = 20, sea_state: float | None = None,
                      wind: float | None = None, seed: int = 0, device="cpu", time_limit: float | None = None,
                      autopilot: bool | AutopilotConfig = True, progress: bool = True, *,
-                     task: TaskConfig | str | None = None) -> MissionEvaluation:
+                     task: TaskConfig | str | None = None,
+                     record: str | os.PathLike | None = None) -> MissionEvaluation:
     """Sail a task's runs (default the mission, EBoatMission-v0) ``runs`` times with ``policy`` (a Policy, a
     checkpoint path, or None for none) and with the classical autopilot (``autopilot``: True for its
     defaults, an AutopilotConfig, or False for none; without the motor on a task without propeller), all on
@@ -818,6 +830,10 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
         progress: a progress bar per controller over its decisions.
         task: a task config or a registered task id (default EBoatMission-v0); tests pass cheaper configs
             (a coarser boat or sea).
+        record: a rosbag2 MCAP log to write (a path ending in .mcap; the ``mcap`` extra): every controller's
+            runs, each under its own namespace (``/<controller>/eboat_<run>``, ``/<controller>/eboat`` for
+            one run), from their start to the end of the controller's last decision, once per decision
+            (``ocean_warp.ros.mcap_log``; None: no log).
 
     Raises:
         ValueError: a bad setting, an unknown task id or nothing to evaluate; CheckpointError: an unusable
@@ -843,12 +859,39 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     config = evaluation_task(task, sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
                              observation=None if policy is None else policy.observation)
     env = SailingEnv(config, int(runs), device=device, seed=seed)
-    results = {controller.name: sail_mission(env, controller, progress=progress) for controller in controllers}
+    log = None
+    if record is not None:
+        from ocean_warp.ros.mcap_log import McapRecorder
+
+        log = McapRecorder(record)
+    try:
+        results = {controller.name: sail_mission(env, controller, progress=progress,
+                                                 **_logging_callbacks(log, env, controller.name))
+                   for controller in controllers}
+    except BaseException:
+        if log is not None:
+            log.abort()
+        raise
+    if log is not None:
+        log.close()
     low, high = config.start.wind_speed
     settings = {"task": task_name(task) if isinstance(task, str) else None, "runs": int(runs),
                 "sea_state": config.simulator.ocean.significant_wave_height, "wind": low if low == high else None,
                 "seed": int(seed), "device": str(env.device), "time_limit": config.episode_time}
     return MissionEvaluation(task=config, settings=settings, results=results)
+
+
+def _logging_callbacks(log, env: SailingEnv, name: str) -> dict:
+    """:func:`sail_mission`'s callbacks that log ``env`` into ``log`` (an ``McapRecorder``) at the start and
+    after every decision, under ``/<name>`` (the controller's name, with characters a ROS name cannot hold
+    replaced by "_"); none without a log."""
+    if log is None:
+        return {}
+    prefix = "/" + re.sub(r"[^A-Za-z0-9_]", "_", name)
+    if not prefix[1:2].isalpha():
+        prefix = "/c" + prefix[1:]
+    return {"on_start": lambda: log.record(env, prefix=prefix),
+            "on_decision": lambda k, decision: log.record(env, prefix=prefix)}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -874,6 +917,9 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
                         help="simulated time per run [s] (default: the task's episode time, 1800 for the missions)")
     parser.add_argument("--out", default="out/eval", help="folder for the PNG, CSVs and NPZ (default out/eval)")
+    parser.add_argument("--record", default=None, metavar="FILE.mcap",
+                        help="also write a rosbag2 MCAP log of every controller's runs, each under /<controller> "
+                             "(needs the mcap extra: pip install 'ocean-warp[mcap]')")
     add_device_argument(parser)
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
@@ -893,6 +939,13 @@ def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
         fail(parser, "--no-policy and --no-autopilot leave nothing to run")
     if args.no_policy and args.policy is not None:
         fail(parser, "--policy and --no-policy contradict each other")
+    if args.record is not None:
+        from ocean_warp.ros.mcap_log import check_record_path
+
+        try:
+            check_record_path(args.record)
+        except (ValueError, ImportError) as error:
+            fail(parser, f"--record: {error}")
 
 
 def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name: str) -> Policy | None:
@@ -945,12 +998,12 @@ def main(argv=None) -> int:
     try:
         evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                                       device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,
-                                      progress=not args.no_progress, task=name)
+                                      progress=not args.no_progress, task=name, record=args.record)
     except ValueError as error:  # a policy whose observation the task cannot give
         fail(parser, str(error))
     paths = evaluation.write(args.out)
     print(evaluation.format_table())
-    for path in paths.values():
+    for path in list(paths.values()) + ([args.record] if args.record is not None else []):
         print(f"wrote {path}")
     return 0
 
