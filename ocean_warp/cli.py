@@ -18,6 +18,8 @@ JOBS = {
                    "USD stage"),
     "render": ("ocean_warp.envs.apps.render", "a video (MP4 or GIF) of a fleet's run, ray-traced from a chase or fixed "
                "camera"),
+    "ros": ("ocean_warp.ros.node", "the simulator as a ROS 1 node: the seed's topics and standard ones, commands, a reset "
+            "service (Debian's ros-core and python3-rospy)"),
     "export-policy": ("ocean_warp.ros.policy_export", "a policy checkpoint as ONNX or TorchScript, its observation "
                       "normalisation inside (the onnx extra for ONNX)"),
 }

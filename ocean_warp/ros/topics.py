@@ -33,6 +33,10 @@ camera/depth/image_raw              sensor_msgs/msg/Image            depth along
 camera/depth/camera_info            sensor_msgs/msg/CameraInfo       the same pinhole model
 ==================================  ===============================  ==============================================
 
+The ROS node (``ocean-warp ros``, :mod:`ocean_warp.ros.node`) also publishes, per boat, ``mission_control/episode``
+(std_msgs/msg/Float32MultiArray, :data:`EPISODE_END`: one message each time an episode ends; not in the logs,
+:data:`NODE_TOPICS`).
+
 Shared: ``/tf`` (tf2_msgs/msg/TFMessage: every boat's ``odom`` -> ``base_link``, its true pose), ``/tf_static``
 (``map`` -> each boat's ``odom``, the identity: the simulator's truth has no drift, REP 105; ``base_link`` ->
 ``lidar_link`` and -> ``camera_link`` at the sensors' mounts, ``camera_link`` -> ``camera_optical_frame``) and
@@ -65,6 +69,7 @@ from .geodesy import GUANABARA_BAY, GeodeticDatum, enu_to_geodetic
 __all__ = [
     "SEED_NAMESPACE", "SEED_OBSERVATION", "BOAT_TOPICS", "TF", "TF_STATIC", "CLOCK", "MAP_FRAME", "Message",
     "BoatSnapshot", "boat_namespace", "frame_id", "snapshot", "stamp", "seed_observation_values",
+    "EPISODE_TOPIC", "NODE_TOPICS", "EPISODE_END", "episode_messages",
     "state_messages", "command_messages", "lidar_messages", "camera_messages", "static_messages", "clock_message",
     "env_lidar", "TYPES", "FLOAT32", "INT16", "FLOAT32_MULTI_ARRAY", "POINT", "VECTOR3_STAMPED", "NAV_SAT_FIX", "IMU",
     "LASER_SCAN", "IMAGE", "CAMERA_INFO", "TF_MESSAGE", "CLOCK_TYPE",
@@ -110,6 +115,14 @@ BOAT_TOPICS = {
 }
 """Each boat's topics, relative to its namespace, and their types (the module's table says what they hold)."""
 TF, TF_STATIC, CLOCK = "/tf", "/tf_static", "/clock"
+EPISODE_TOPIC = "mission_control/episode"
+NODE_TOPICS = {EPISODE_TOPIC: FLOAT32_MULTI_ARRAY}
+"""Each boat's topics that only the ROS node publishes (not in the MCAP logs), relative to its namespace."""
+EPISODE_END = ("success", "waypoints_reached", "decisions", "return", "status_flags")
+"""An episode's end (``mission_control/episode``), in order: 1 where the boat reached its last waypoint, else 0;
+waypoints reached; decisions sailed; the reward summed over the episode; the simulator's status flags at the
+end (0: none; ``ocean_warp.BoatStatus``: capsized, collided, ...). A boat whose episode ended starts the next one
+at once (a new start is drawn)."""
 
 SEED_OBSERVATION = ("distance_m", "bearing_deg", "speed_m_s", "apparent_wind_speed_m_s", "apparent_wind_angle_deg",
                     "boom_angle_deg", "rudder_angle_deg", "propeller_level", "roll_deg")
@@ -396,3 +409,19 @@ def clock_message(time_ns: int) -> Message:
     """``/clock`` at ``time_ns`` of simulated time."""
     return Message(CLOCK, CLOCK_TYPE, time_ns, {"clock": stamp(time_ns)})
 
+
+def episode_messages(time_ns: int, ended, success, waypoints, decisions, returns, status, *,
+                     prefix: str = "") -> list[Message]:
+    """``mission_control/episode`` (:data:`EPISODE_END`) of every boat whose episode ended at ``time_ns``:
+    ``ended`` (N,) bool, and per boat (N,) ``success`` (1 or 0), ``waypoints`` reached, ``decisions`` sailed,
+    ``returns`` (the summed reward) and the simulator's ``status`` flags at the end."""
+    ended = np.asarray(ended, dtype=bool).reshape(-1)
+    n, messages = ended.size, []
+    columns = [np.asarray(v, dtype=np.float64).reshape(-1) for v in (success, waypoints, decisions, returns, status)]
+    for boat in np.flatnonzero(ended):
+        ns = boat_namespace(int(boat), n, prefix)
+        messages.append(Message(f"{ns}/{EPISODE_TOPIC}", FLOAT32_MULTI_ARRAY, time_ns, {
+            "layout": {"dim": [{"label": "episode_end", "size": len(EPISODE_END), "stride": len(EPISODE_END)}],
+                       "data_offset": 0},
+            "data": [float(column[boat]) for column in columns]}))
+    return messages
