@@ -17,6 +17,10 @@ Each decision, a boat picks a course to its target and turns it into normalised 
 - Sheet: the boom limit from the apparent wind angle minus an angle of attack, eased when the boat
   heels too far and while it bears away (to shed the weather helm that holds a heeled bow up).
 
+Obstacle avoidance (``steer_clear``, launched before ``sail_to_targets`` where the boats carry a lidar):
+collision cones about the lidar's nearest return per sector turn each boat's target into a steering
+target; ``SailingAutopilot`` documents the law.
+
 Angles: radians, headings as yaw from +x counter-clockwise; the wind "direction" is where the air
 blows towards (as ``ocean_warp.WindConfig``); a boat's side is +1 when the wind comes over its
 starboard side (starboard tack: heading counter-clockwise of the wind's source), -1 on port, 0 unset.
@@ -28,7 +32,8 @@ import warp as wp
 
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
-__all__ = ["AutopilotParameters", "sail_to_targets", "reset_autopilot",
+__all__ = ["AutopilotParameters", "AvoidanceParameters", "sail_to_targets", "reset_autopilot", "steer_clear",
+           "forget_returns", "NO_RETURN_AGE",
            "course_to_target", "trim_sheet", "steer_rudder", "roll_of", "tacking_turn",
            "RUDDER_ACTION_SCALE", "SHEET_ACTION_SCALE", "PROPELLER_ACTION_SCALE"]
 
@@ -38,6 +43,8 @@ SHEET_ACTION_SCALE = wp.constant(PI / 4.0)
 """Sheet angle per unit of (a1 + 1) [rad] (45 deg)."""
 PROPELLER_ACTION_SCALE = wp.constant(5.0)
 """Propeller levels per unit of a0."""
+NO_RETURN_AGE = wp.constant(1.0e30)
+"""Age [s] of a sector's remembered return when it holds none (after a reset)."""
 
 
 @wp.struct
@@ -66,6 +73,32 @@ class AutopilotParameters:
     approach_radius: float
     assist_level: int
     assist_speed: float
+
+
+@wp.struct
+class AvoidanceParameters:
+    """The avoidance kernel's view of an ``AutopilotConfig`` and of the lidar whose sectors it reads."""
+
+    avoidance_range: float
+    """Returns nearer than this [m] are avoided."""
+    avoidance_clearance: float
+    """Gap [m] the boat's track keeps from a return."""
+    avoidance_cone: float
+    """The widest a cone spreads for the clearance [rad], beyond half a sector."""
+    avoidance_lookahead: float
+    """Distance of the steering target from the boat [m]."""
+    avoidance_memory: float
+    """How long a sector's last return is still avoided after its sector stops seeing it [s]."""
+    avoidance_turn_cost: float
+    """Weight of the turn from the heading against the departure from the intended course."""
+    decision_period: float
+    """Time between decisions [s]: how much a remembered return ages per call."""
+    sector_range: float
+    """The lidar's max range [m]: a sector's value times this is its nearest return's range."""
+    sector_half_width: float
+    """Half a sector's angular width [rad]: how far from its centre a return may lie."""
+    mount: wp.vec3
+    """The lidar's origin in the body frame [m]."""
 
 
 @wp.func
@@ -275,3 +308,196 @@ def reset_autopilot(mask: wp.array(dtype=wp.int32), side: wp.array(dtype=wp.int3
         gybes[boat] = 0
         turn[boat] = 0
         stalled[boat] = 0.0
+
+
+@wp.func
+def _cone(a: AvoidanceParameters, point: wp.vec3, sensor_x: float, sensor_y: float) -> wp.vec3:
+    """The collision cone of a remembered return ``point`` (world x, y [m], age [s]) seen from the sensor at
+    (sensor_x, sensor_y) [m]: (world bearing [rad], half-width [rad], 1 if it is avoided now else 0)."""
+    dx = point[0] - sensor_x
+    dy = point[1] - sensor_y
+    distance = wp.sqrt(dx * dx + dy * dy)
+    avoided = 0.0
+    if point[2] <= a.avoidance_memory and distance < a.avoidance_range:
+        avoided = 1.0
+    half_width = a.sector_half_width + wp.min(wp.asin(wp.min(a.avoidance_clearance / wp.max(distance, 1.0e-6), 1.0)),
+                                              a.avoidance_cone)
+    return wp.vec3(wp.atan2(dy, dx), half_width, avoided)
+
+
+@wp.func
+def _blocked(a: AvoidanceParameters, returns: wp.array2d(dtype=wp.vec3), boat: int, sensor_x: float,
+             sensor_y: float, course: float) -> bool:
+    """Whether ``course`` [rad] heads into the collision cone of one of ``boat``'s returns."""
+    result = int(0)
+    for sector in range(returns.shape[1]):
+        cone = _cone(a, returns[boat, sector], sensor_x, sensor_y)
+        if cone[2] > 0.0 and wp.abs(wrap_angle(course - cone[0])) < cone[1]:
+            result = 1
+    return result != 0
+
+
+@wp.func
+def _turn_span(cone: wp.vec3, heading: float, direction: float) -> wp.vec2:
+    """Where ``cone`` (bearing, half-width [rad]) lies along a turn from ``heading`` in ``direction`` (+1
+    counter-clockwise): (near edge, far edge) [rad of turn]; a cone that holds the heading starts below 0,
+    one behind the heading is put a full turn on."""
+    centre = direction * wrap_angle(cone[0] - heading)
+    if centre + cone[1] <= 0.0:
+        centre = centre + 2.0 * PI
+    return wp.vec2(centre - cone[1], centre + cone[1])
+
+
+@wp.func
+def _crosses(a: AvoidanceParameters, returns: wp.array2d(dtype=wp.vec3), boat: int, sensor_x: float,
+             sensor_y: float, heading: float, course: float) -> bool:
+    """Whether the short turn from ``heading`` to ``course`` [rad] sweeps the bow, once clear, into a
+    collision cone of ``boat``'s returns again (across another obstacle). The blocked run the turn starts in
+    (the cones that hold the heading and those that overlap them, in the turn's direction) is left first."""
+    turn = wrap_angle(course - heading)
+    direction = 1.0
+    if turn < 0.0:
+        direction = -1.0
+    # The end of the blocked run from the heading: extended by every cone that starts within it.
+    clear_from = float(0.0)
+    for sweep in range(returns.shape[1]):
+        reached = clear_from
+        for sector in range(returns.shape[1]):
+            cone = _cone(a, returns[boat, sector], sensor_x, sensor_y)
+            if cone[2] > 0.0:
+                span = _turn_span(cone, heading, direction)
+                if span[0] <= clear_from and span[1] > clear_from:
+                    clear_from = span[1]
+        if clear_from == reached:
+            break
+    result = int(0)
+    for sector in range(returns.shape[1]):
+        cone = _cone(a, returns[boat, sector], sensor_x, sensor_y)
+        if cone[2] > 0.0:
+            span = _turn_span(cone, heading, direction)
+            if span[0] > clear_from and span[0] < wp.abs(turn):
+                result = 1
+    return result != 0
+
+
+@wp.kernel(enable_backward=False)
+def steer_clear(
+    p: AutopilotParameters,
+    a: AvoidanceParameters,
+    sectors: wp.array2d(dtype=float),
+    first: int,
+    azimuth: wp.array(dtype=float),
+    targets: wp.array(dtype=wp.vec3),
+    position: wp.array(dtype=wp.vec3),
+    orientation: wp.array(dtype=wp.quat),
+    wind_velocity: wp.array(dtype=wp.vec3),
+    side: wp.array(dtype=wp.int32),
+    returns: wp.array2d(dtype=wp.vec3),
+    steering: wp.array(dtype=wp.vec3),
+    deflection: wp.array(dtype=float),
+):
+    """One thread per boat: the steering target [m, world] that keeps the boat's course out of the collision
+    cones of what its lidar sees (the law of ``SailingAutopilot``'s docstring).
+
+    ``sectors`` (N, P): columns ``first`` .. ``first + S - 1`` hold the S sectors' nearest return over the
+    lidar's max range (1: none), sector s centred on ``azimuth[s]`` [rad, counter-clockwise from the bow].
+    ``returns`` (N, S): each sector's last return, world x, y [m] and its age [s] (z), updated here.
+    ``side`` is read, not written (``sail_to_targets`` updates it). ``steering`` gets the target itself
+    where the course to it is clear, else the point ``avoidance_lookahead`` from the boat on the clear
+    bearing chosen; ``deflection`` the angle of the course steered for it off the course to the target
+    [rad] (0: clear)."""
+    boat = wp.tid()
+    q = orientation[boat]
+    heading = heading_of(q)
+    c = wp.cos(heading)
+    s = wp.sin(heading)
+    origin = position[boat]
+    # The sensor's place over the water (the boat taken level: roll and pitch move it by centimetres).
+    sensor_x = origin[0] + c * a.mount[0] - s * a.mount[1]
+    sensor_y = origin[1] + s * a.mount[0] + c * a.mount[1]
+    for sector in range(returns.shape[1]):
+        value = sectors[boat, first + sector]
+        point = returns[boat, sector]
+        if value < 1.0:
+            reach = value * a.sector_range
+            angle = heading + azimuth[sector]
+            point = wp.vec3(sensor_x + reach * wp.cos(angle), sensor_y + reach * wp.sin(angle), 0.0)
+        else:
+            point = wp.vec3(point[0], point[1], point[2] + a.decision_period)
+        returns[boat, sector] = point
+
+    # The course the autopilot would steer to the target (as sail_to_targets chooses it).
+    goal = targets[boat]
+    offset = goal - origin
+    bearing = wp.atan2(offset[1], offset[0])
+    distance = wp.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
+    wind = wind_velocity[boat]
+    wind_to = wp.atan2(wind[1], wind[0])
+    current = side[boat]
+    if current == 0:
+        current = _side_of(wrap_angle(heading - (wind_to + PI)))
+    intended = course_to_target(p, bearing, distance, wind_to, current)[0]
+    if not _blocked(a, returns, boat, sensor_x, sensor_y, intended):
+        steering[boat] = goal
+        deflection[boat] = 0.0
+        return
+
+    # Candidates: bearings on the edges of every cone and of the no-go and dead-run zones, clear of every
+    # cone. Each is costed by the course the course logic steers for a target on it: off the intended
+    # course, plus the turn from the heading (weighted), plus 10 where that course (the zone's edge, for a
+    # bearing in a zone) heads into a cone, plus 20 where the bow would sweep across another obstacle on
+    # the way. The cheapest wins; boxed in (no clear bearing), straight away from the nearest return.
+    chosen = float(0.0)
+    chosen_course = float(0.0)
+    chosen_cost = float(1.0e9)
+    away = heading + PI
+    nearest = float(1.0e9)
+    run_half_width = PI - p.run_angle
+    for candidate in range(2 * returns.shape[1] + 4):
+        course = float(0.0)
+        valid = int(1)
+        if candidate < 2 * returns.shape[1]:
+            point = returns[boat, candidate // 2]
+            cone = _cone(a, point, sensor_x, sensor_y)
+            valid = int(cone[2])
+            gap = wp.length(wp.vec2(point[0] - sensor_x, point[1] - sensor_y))
+            if valid == 1 and gap < nearest:
+                nearest = gap
+                away = cone[0] + PI
+            # Two edges per cone, each just outside it (the union's edges are among them).
+            course = wrap_angle(cone[0] + float(1 - 2 * (candidate % 2)) * (cone[1] + 1.0e-4))
+        else:
+            zone = candidate - 2 * returns.shape[1]
+            sign = float(1 - 2 * (zone % 2))
+            if zone < 2:
+                course = wrap_angle(wind_to + PI + sign * (p.no_go_angle + 1.0e-4))
+            else:
+                course = wrap_angle(wind_to + sign * (run_half_width + 1.0e-4))
+        if valid == 1 and not _blocked(a, returns, boat, sensor_x, sensor_y, course):
+            # What the course logic steers for a target on this bearing (close-hauled on the boat's side for
+            # one in the no-go zone, a broad reach for one dead downwind), and what that costs.
+            sailed = course_to_target(p, course, a.avoidance_lookahead, wind_to, current)[0]
+            cost = wp.abs(wrap_angle(sailed - intended)) + a.avoidance_turn_cost * wp.abs(wrap_angle(sailed - heading))
+            if sailed != course and _blocked(a, returns, boat, sensor_x, sensor_y, sailed):
+                cost = cost + 10.0
+            # (The sweep is looked for only where it could matter: it adds to the cost.)
+            if cost < chosen_cost and _crosses(a, returns, boat, sensor_x, sensor_y, heading, sailed):
+                cost = cost + 20.0
+            if cost < chosen_cost:
+                chosen = course
+                chosen_course = sailed
+                chosen_cost = cost
+    if chosen_cost > 1.0e8:
+        chosen = wrap_angle(away)
+        chosen_course = course_to_target(p, chosen, a.avoidance_lookahead, wind_to, current)[0]
+    steering[boat] = wp.vec3(origin[0] + a.avoidance_lookahead * wp.cos(chosen),
+                             origin[1] + a.avoidance_lookahead * wp.sin(chosen), goal[2])
+    deflection[boat] = wrap_angle(chosen_course - intended)
+
+
+@wp.kernel(enable_backward=False)
+def forget_returns(mask: wp.array(dtype=wp.int32), returns: wp.array2d(dtype=wp.vec3)):
+    """One thread per (boat, sector): forget the remembered returns of boats whose ``mask`` != 0."""
+    boat, sector = wp.tid()
+    if mask[boat] != 0:
+        returns[boat, sector] = wp.vec3(0.0, 0.0, NO_RETURN_AGE)
