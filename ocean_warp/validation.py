@@ -64,6 +64,18 @@ def require_in_range(owner: str, field: str, value, low: float, high: float, *, 
     return value
 
 
+def require_range_pair(owner: str, field: str, pair, low: float, high: float) -> tuple[float, float]:
+    """Return ``pair`` as a (low, high) tuple of floats, each in [``low``, ``high``] and in order, else raise
+    ``ValueError`` naming ``owner.field``."""
+    if not (isinstance(pair, (tuple, list)) and len(pair) == 2):
+        raise ValueError(f"{_describe(owner, field)} must be a (low, high) pair, got {pair!r}")
+    a = require_in_range(owner, field, pair[0], low, high)
+    b = require_in_range(owner, field, pair[1], low, high)
+    if a > b:
+        raise ValueError(f"{_describe(owner, field)} must have low <= high, got {pair!r}")
+    return (a, b)
+
+
 def require_int_in_range(owner: str, field: str, value, low: int, high: int) -> int:
     """Return ``value`` as an int if it is an integer with ``low <= value <= high``, else raise."""
     if isinstance(value, bool) or not isinstance(value, Integral):

@@ -14,7 +14,13 @@ from __future__ import annotations
 
 import dataclasses
 
-from ocean_warp.validation import require_in_range, require_int_in_range, require_non_negative, require_positive
+from ocean_warp.validation import (
+    require_in_range,
+    require_int_in_range,
+    require_non_negative,
+    require_positive,
+    require_range_pair,
+)
 
 __all__ = ["ObstacleLayoutConfig", "BUOY_COLOR", "PILE_COLOR"]
 
@@ -22,16 +28,6 @@ BUOY_COLOR = (0.95, 0.45, 0.1)
 """Linear RGB of a buoy, for the camera and the stages (``SceneObject.buoy``'s)."""
 PILE_COLOR = (0.45, 0.42, 0.4)
 """Linear RGB of a pile (``SceneObject.pillar``'s)."""
-
-
-def _pair(owner: str, name: str, pair, low: float, high: float) -> tuple[float, float]:
-    if not (isinstance(pair, (tuple, list)) and len(pair) == 2):
-        raise ValueError(f"{owner}.{name} must be a (low, high) pair, got {pair!r}")
-    a = require_in_range(owner, name, pair[0], low, high)
-    b = require_in_range(owner, name, pair[1], low, high)
-    if a > b:
-        raise ValueError(f"{owner}.{name} must have low <= high, got {pair!r}")
-    return (a, b)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -78,13 +74,13 @@ class ObstacleLayoutConfig:
         object.__setattr__(self, "pile_fraction", require_in_range(owner, "pile_fraction", self.pile_fraction,
                                                                    0.0, 1.0))
         for name in ("buoy_radius", "pile_radius"):
-            pair = _pair(owner, name, getattr(self, name), 0.0, 50.0)
+            pair = require_range_pair(owner, name, getattr(self, name), 0.0, 50.0)
             if pair[0] <= 0.0:
                 raise ValueError(f"{owner}.{name} must be above 0 m, got {getattr(self, name)!r}")
             object.__setattr__(self, name, pair)
         object.__setattr__(self, "pile_height", require_positive(owner, "pile_height", self.pile_height,
                                                                  unit=" [m]"))
-        object.__setattr__(self, "along_track", _pair(owner, "along_track", self.along_track, 0.0, 1.0))
+        object.__setattr__(self, "along_track", require_range_pair(owner, "along_track", self.along_track, 0.0, 1.0))
         for name in ("cross_track", "start_clearance", "waypoint_clearance", "spacing"):
             object.__setattr__(self, name, require_non_negative(owner, name, getattr(self, name), unit=" [m]"))
         object.__setattr__(self, "attempts", require_int_in_range(owner, "attempts", self.attempts, 1, 1000))

@@ -26,7 +26,13 @@ from ocean_warp.eboat import EBoatConfig, EBoatSimulatorConfig, Profile
 from ocean_warp.ocean_config import OceanConfig
 from ocean_warp.perception.lidar_config import LidarConfig
 from ocean_warp.sensors import SensorConfig
-from ocean_warp.validation import require_choice, require_in_range, require_non_negative, require_positive
+from ocean_warp.validation import (
+    require_choice,
+    require_in_range,
+    require_non_negative,
+    require_positive,
+    require_range_pair,
+)
 from ocean_warp.water_config import WaterConfig
 from ocean_warp.wind import WindConfig
 
@@ -63,16 +69,6 @@ class ObservationSet(str, enum.Enum):
     speed through the water / 2; sin, cos of the apparent wind angle and its speed / 10 (vane and
     anemometer); heel from the accelerometer [rad]; yaw rate / 0.5 (gyro); rudder / 60 deg, boom /
     90 deg and sheet limit / 90 deg (actuator feedback); the last action (3)."""
-
-
-def _require_range(owner: str, name: str, pair, low: float, high: float) -> tuple[float, float]:
-    if not (isinstance(pair, (tuple, list)) and len(pair) == 2):
-        raise ValueError(f"{owner}.{name} must be a (low, high) pair, got {pair!r}")
-    a = require_in_range(owner, name, pair[0], low, high)
-    b = require_in_range(owner, name, pair[1], low, high)
-    if a > b:
-        raise ValueError(f"{owner}.{name} must have low <= high, got {pair!r}")
-    return (a, b)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -122,7 +118,7 @@ class StartConfig:
                                 ("waypoint_distance", 0.0, 10_000.0), ("waypoint_bearing_deg", -360.0, 360.0),
                                 ("surge_speed", -2.0, 5.0), ("sheet_deg", 0.0, 90.0),
                                 ("sensor_noise_scale", 0.0, 10.0)):
-            object.__setattr__(self, name, _require_range(owner, name, getattr(self, name), low, high))
+            object.__setattr__(self, name, require_range_pair(owner, name, getattr(self, name), low, high))
         for name in ("heading_step_deg", "wind_direction_step_deg"):
             object.__setattr__(self, name, require_in_range(owner, name, getattr(self, name), 0.0, 360.0))
         object.__setattr__(self, "position_jitter", require_non_negative(owner, "position_jitter",
