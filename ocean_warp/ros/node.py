@@ -1,4 +1,5 @@
-"""ocean-warp ros: the simulator as a ROS 1 node (rospy, from Debian's packages).
+"""ocean-warp ros: the simulator as a ROS 1 node (rospy, from Debian's packages), or with --ros 2 a ROS 2 node
+(rclpy; written against rclpy's documented API and checked only with fakes, never with a real rclpy).
 
     roscore &
     ocean-warp ros                                       # one boat of EBoatWaypoint-v0, in real time
@@ -28,8 +29,10 @@ each boat's control_interface/sail (Float32, sheet: largest boom angle 0 to 90 d
 atmosferic_control/wind (Point, sets the boat's mean true wind [m/s], ENU; the node's own messages on it are
 ignored). A command holds until the next; one that is NaN, infinite or out of range is ignored with a warning.
 The service ~reset (/ocean_warp/reset, std_srvs/Trigger) restarts every boat from --seed and the clock from 0.
-Without a ROS master the node exits at once with one line (status 2). Ctrl-C (or SIGTERM) stops it cleanly
-and finishes the --record file. ocean_warp.ros.topics says what every topic holds (frames: REP 103, 105).
+Without a ROS master (ROS 1) the node exits at once with one line (status 2); ROS 2 has no master to
+check (rospy-style remaps become --ros-args -r from:=to there, and the service is ~/reset). Ctrl-C (or
+SIGTERM) stops it cleanly and finishes the --record file. ocean_warp.ros.topics says what every topic
+holds (frames: REP 103, 105).
 """
 
 from __future__ import annotations
@@ -89,6 +92,10 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--record", default=None, metavar="FILE.mcap",
                         help="also write a rosbag2 MCAP log of the run (needs the mcap extra: pip install "
                              "'ocean-warp[mcap]')")
+    parser.add_argument("--ros", choices=("1", "2", "auto"), default="auto",
+                        help="ROS 1 (rospy, needs a master) or ROS 2 (rclpy, DDS discovery; written against "
+                             "rclpy's documented API and tested only with fakes); auto (default): ROS 1 where "
+                             "rospy is found, else ROS 2 where rclpy imports")
     add_device_argument(parser)
     return parser
 
@@ -148,12 +155,14 @@ def main(argv=None) -> int:
     if problem is not None:
         return report_error(PROG, problem)
     try:
-        rospy = ros1.import_rospy()
-    except ros1.RosUnavailable as error:
+        version, client = _ros_client(args.ros)
+    except ImportError as error:
         return report_error(PROG, str(error))
-    uri = ros1.master_uri(remaps)
-    if not ros1.master_online(uri):
-        return report_error(PROG, ros1.no_master_text(uri))
+    uri = None
+    if version == 1:  # ROS 2 has no master (DDS discovery): nothing to check
+        uri = ros1.master_uri(remaps)
+        if not ros1.master_online(uri):
+            return report_error(PROG, ros1.no_master_text(uri))
     try:
         sim = _Simulation.build(args, task_id, device)
     except ValueError as error:
@@ -163,10 +172,15 @@ def main(argv=None) -> int:
         from .mcap_log import McapRecorder
 
         recorder = McapRecorder(args.record)
-    bus = Ros1Bus(rospy, uri, remaps, node_name=NODE_NAME, program=PROG)
+    if version == 1:
+        bus = Ros1Bus(client, uri, remaps, node_name=NODE_NAME, program=PROG)
+    else:
+        from .ros2_bus import Ros2Bus
+
+        bus = Ros2Bus(client, remaps, node_name=NODE_NAME, program=PROG)
     try:
         bus.start()
-    except Exception as error:  # noqa: BLE001 - rospy's init and the master's XML-RPC raise many kinds
+    except Exception as error:  # noqa: BLE001 - rospy's/rclpy's init and the master's XML-RPC raise many kinds
         if recorder is not None:
             recorder.abort()
         bus.stop("ocean-warp ros could not start")
@@ -186,6 +200,26 @@ def main(argv=None) -> int:
         summary += f"; wrote {args.record} ({plural(recorder.messages_written, 'message')})"
     print(f"{PROG}: {summary}", flush=True)
     return 0
+
+
+def _ros_client(choice: str):
+    """(1 or 2, the rospy or rclpy module) for ``--ros`` ``choice``: "1", "2", or "auto" (ROS 1 where rospy is
+    found, else ROS 2 where rclpy imports); an ImportError of one line naming what is missing otherwise."""
+    from .ros2_bus import Ros2Unavailable, import_rclpy
+
+    if choice in ("1", "auto"):
+        try:
+            return 1, ros1.import_rospy()
+        except ros1.RosUnavailable as error:
+            if choice == "1":
+                raise
+            missing = str(error)
+    try:
+        return 2, import_rclpy()
+    except Ros2Unavailable as error:
+        if choice == "2":
+            raise
+        raise ImportError(f"{missing}; {error}") from None
 
 
 # --- the simulation ---------------------------------------------------------------------------------------

@@ -107,15 +107,14 @@ class NodeLoop:
         if reason is not None:
             self.warn((boat, WIND_TOPIC), f"{PROG}: {self._topic(boat, WIND_TOPIC)}: {reason}")
 
-    def _on_reset(self, request):
-        from std_srvs.srv import TriggerResponse
-
+    def _on_reset(self, request) -> tuple[bool, str]:
+        """The reset service's answer, (success, message): the bus makes its Trigger response of it."""
         ticket = {"done": threading.Event(), "ok": False}
         with self._reset_lock:
             self._resets.append(ticket)
         if not ticket["done"].wait(RESET_WAIT_S) or not ticket["ok"]:
-            return TriggerResponse(False, f"the simulator did not reset (stopped, or busy for {RESET_WAIT_S:g} s)")
-        return TriggerResponse(True, f"every boat restarted from seed {self.sim.seed}; simulated time 0")
+            return False, f"the simulator did not reset (stopped, or busy for {RESET_WAIT_S:g} s)"
+        return True, f"every boat restarted from seed {self.sim.seed}; simulated time 0"
 
     def _topic(self, boat: int, topic: str) -> str:
         return f"{boat_namespace(boat, self.sim.boats)}/{topic}"
@@ -179,7 +178,7 @@ class NodeLoop:
                 f"{sim.env.device}: a decision every {sim.env.decision_period:g} s of simulated time, "
                 f"{self.rate_text}{', lockstep with the commands' if self.lockstep else ''}; "
                 f"commands on <boat>/control_interface/{{sail,rudder,propulsion}}; reset: "
-                f"{self.bus.rospy.resolve_name(RESET_SERVICE)} (std_srvs/Trigger)")
+                f"{self.bus.resolve_name(RESET_SERVICE)} (std_srvs/Trigger)")
 
     def _stopping(self) -> bool:
         if self.bus.shut_down() and not self.stop.is_set():

@@ -85,9 +85,13 @@ class Ros1Bus:
         self.rospy.Subscriber(self.name(topic), ros1.message_class(type_name), callback, queue_size=10)
 
     def service(self, name: str, handler) -> None:
-        from std_srvs.srv import Trigger
+        """The std_srvs/Trigger service ``name``; ``handler(request)`` returns (success, message)."""
+        from std_srvs.srv import Trigger, TriggerResponse
 
-        self.rospy.Service(name, Trigger, handler)
+        self.rospy.Service(name, Trigger, lambda request: TriggerResponse(*handler(request)))
+
+    def resolve_name(self, name: str) -> str:
+        return self.rospy.resolve_name(name)
 
     def shut_down(self) -> bool:
         return self.rospy.is_shutdown()
