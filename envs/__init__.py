@@ -6,11 +6,13 @@ decision step with same-step resets; it implements the protocol, as ``parallel``
 does) and the task ids (``registration``). By role, in subpackages (each ``__init__`` says what it holds):
 
 - ``tasks``: ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours), ``MissionConfig`` (the
-  six-waypoint "BCDACA" mission) and ``MissionSailConfig`` (the mission with the propeller off), and
-  their kernels.
+  six-waypoint "BCDACA" mission), ``MissionSailConfig`` (the mission with the propeller off),
+  ``AvoidConfig`` and ``AvoidSailConfig`` (a waypoint through buoys and piles, with a lidar), and their
+  kernels.
 - ``interfaces``: ``RslRlVecEnv`` (rsl-rl), ``SailingVectorEnv`` and ``SailingEnvSingle`` (gymnasium, with the
-  ids ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``, ``ocean_warp/EBoatMission-v0``
-  and ``ocean_warp/EBoatMissionSail-v0``), ``Sb3VecEnv`` (stable-baselines3, an optional extra:
+  ids ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``, ``ocean_warp/EBoatMission-v0``,
+  ``ocean_warp/EBoatMissionSail-v0``, ``ocean_warp/EBoatAvoid-v0`` and ``ocean_warp/EBoatAvoidSail-v0``),
+  ``Sb3VecEnv`` (stable-baselines3, an optional extra:
   ``ocean_warp.envs.interfaces.sb3_env``).
 - ``parallel``: environments over CPU worker processes. ``controllers``: ``SailingAutopilot``, a classical
   sailing autopilot that runs any task in place of a policy. ``training``: PPO, checkpoints, the shipped
@@ -20,11 +22,14 @@ does) and the task ids (``registration``). By role, in subpackages (each ``__ini
 from .protocol import BatchedEnv, EnvBuffers
 from .sailing_env import SailingEnv, environment_origins
 from .tasks.task_configs import (
+    AvoidConfig,
+    AvoidSailConfig,
     BCDACA_ROUTE,
     MISSION_WAYPOINTS,
     MissionConfig,
     MissionSailConfig,
     ObservationSet,
+    ObstacleLayoutConfig,
     RewardConfig,
     StartConfig,
     TaskConfig,
@@ -33,7 +38,7 @@ from .tasks.task_configs import (
 )
 
 __all__ = ["BatchedEnv", "SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "MissionSailConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
+           "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig", "ObstacleLayoutConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
 
 from .interfaces.gym_env import SailingEnvSingle, SailingVectorEnv
 from .registration import TASK_IDS, make_task_config, register_envs

@@ -1,10 +1,14 @@
 """Tasks: what a boat is asked to do and how it is scored.
 
 - ``task_configs``: the task configs (``WaypointConfig``, the seed paper's; ``WaypointPlusConfig``;
-  ``MissionConfig``, the six-waypoint BCDACA mission; ``MissionSailConfig``, the mission under sail alone),
-  with their starts, rewards and observation sets. Re-exported here.
+  ``MissionConfig``, the six-waypoint BCDACA mission; ``MissionSailConfig``, the mission under sail alone;
+  ``AvoidConfig`` and ``AvoidSailConfig``, a waypoint through buoys and piles seen with a lidar), with their
+  starts, rewards and observation sets. Re-exported here.
 - ``task_kernels``: the Warp kernels of a decision's task side: actions to commands, observations, rewards,
   terminations and the masked resets.
+- ``obstacle_layout`` (``ObstacleLayoutConfig``), ``obstacle_kernels`` and ``obstacle_course``
+  (``ObstacleCourse``): the obstacles drawn at every reset, the contact, the lidar and the proximity gap of a
+  task with ``obstacles`` or a ``lidar``.
 """
 
 from .task_configs import *  # noqa: F401,F403

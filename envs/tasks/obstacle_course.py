@@ -15,14 +15,14 @@ from ocean_warp.kernels.contact import object_clearances
 from ocean_warp.perception.lidar import Lidar
 from ocean_warp.perception.scene import PARKED_DEPTH, Scene
 
-from .obstacle_kernels import LayoutParameters, ObjectRows, append_sectors, draw_layouts
+from .obstacle_kernels import KIND_BUOY, KIND_PILE, LayoutParameters, ObjectRows, append_sectors, draw_layouts
 from .obstacle_layout import BUOY_COLOR, PILE_COLOR, ObstacleLayoutConfig
 from .task_kernels import PRIVILEGED_OBS
 
 __all__ = ["ObstacleCourse", "OBSTACLE_NONE", "OBSTACLE_BUOY", "OBSTACLE_PILE"]
 
-OBSTACLE_NONE, OBSTACLE_BUOY, OBSTACLE_PILE = 0, 1, 2
-"""The kinds in :attr:`ObstacleCourse.table` (``obstacle_kernels.KIND_*``)."""
+OBSTACLE_NONE, OBSTACLE_BUOY, OBSTACLE_PILE = 0, int(KIND_BUOY), int(KIND_PILE)
+"""The kinds in :attr:`ObstacleCourse.table` (0: an empty row)."""
 
 
 def _layout_parameters(layout: ObstacleLayoutConfig) -> LayoutParameters:
