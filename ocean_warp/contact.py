@@ -17,7 +17,7 @@ from .device_structs import struct_from
 from .kernels.contact import ContactModel, contact_wrenches
 from .validation import require_non_negative, require_positive
 
-__all__ = ["ContactConfig", "Contact", "boat_capsule"]
+__all__ = ["ContactConfig", "Contact", "boat_capsule", "contact_model"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -52,6 +52,18 @@ def boat_capsule(hull_vertices: np.ndarray, radius: float | None = None) -> tupl
     return (np.array([x_low + inset, 0.0, height]), np.array([x_high - inset, 0.0, height]), half_beam)
 
 
+def contact_model(config: ContactConfig | None = None, hull_vertices=None) -> ContactModel:
+    """The kernels' view of ``config`` (default ``ContactConfig()``) and of the capsule of a hull of
+    ``hull_vertices`` (body frame [m]; default the E-Boat's)."""
+    config = config if config is not None else ContactConfig()
+    if hull_vertices is None:
+        from .eboat.parts import eboat_parts
+
+        hull_vertices = eboat_parts(hull_detail=1).hull.points
+    stern, bow, radius = boat_capsule(hull_vertices, config.radius)
+    return struct_from(ContactModel, config, stern=wp.vec3(*stern), bow=wp.vec3(*bow), radius=radius)
+
+
 class Contact:
     """Contact of the boats of ``scene`` (an ``ocean_warp.perception.Scene`` over the simulator's boats)
     with its objects and with each other, environment by environment: a simulator force model (add it with
@@ -64,12 +76,7 @@ class Contact:
         if not isinstance(self.config, ContactConfig):
             raise ValueError(f"Contact: config must be a ContactConfig, got {self.config!r}")
         self.scene, self.device = scene, scene.device
-        if hull_vertices is None:
-            from .eboat.parts import eboat_parts
-
-            hull_vertices = eboat_parts(hull_detail=1).hull.points
-        stern, bow, radius = boat_capsule(hull_vertices, self.config.radius)
-        self.model = struct_from(ContactModel, self.config, stern=wp.vec3(*stern), bow=wp.vec3(*bow), radius=radius)
+        self.model = contact_model(self.config, hull_vertices)
         """What the kernel reads (``kernels.contact.ContactModel``)."""
         count = scene.view.boat_position.shape[0]
         self._boat_env = wp.array(scene.boat_env.astype(np.int32), dtype=int, device=self.device)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ocean_warp.contact import Contact
+from ocean_warp.contact import Contact, contact_model
 from ocean_warp.device_structs import struct_from
 from ocean_warp.kernels.contact import object_clearances
 from ocean_warp.perception.lidar import Lidar
@@ -71,8 +71,8 @@ class ObstacleCourse:
             env.simulator.simulator.add_model(self.contact)
         self.clearance = clearance
         self._boat_env = wp.array(np.arange(n, dtype=np.int32), dtype=int, device=device)
-        self._clearance_model = self.contact.model if self.contact is not None \
-            else Contact(self.scene).model  # the boats' capsule, for the gap even without contact forces
+        self._clearance_model = self.contact.model if self.contact is not None else contact_model()
+        """The boats' capsule, for the gap to the obstacles (with or without contact forces)."""
         self.lidar = None if task.lidar is None else Lidar(task.lidar, self.scene, first_index=env.first_env)
         self._sectors = None if self.lidar is None else self.lidar.downsampled_array(task.lidar_sectors)
         self._policy_column, self._critic_column = policy_column, policy_column + PRIVILEGED_OBS

@@ -46,8 +46,8 @@ from ocean_warp.cli_support import (add_device_argument, check_options, checked_
 
 from . import ros1
 from .node_loop import PROG, RESET_SERVICE, NodeLoop
-from .ros1_bus import GLOBAL_TOPICS, Ros1Bus
-from .topics import (BOAT_TOPICS, NODE_TOPICS, boat_namespace, camera_messages, clock_message, env_lidar,
+from .ros1_bus import Ros1Bus
+from .topics import (BOAT_TOPICS, GLOBAL_TOPICS, NODE_TOPICS, boat_namespace, camera_messages, clock_message, env_lidar,
                      episode_messages, lidar_messages, snapshot, state_messages, static_messages)
 
 __all__ = ["DEFAULT_TASK", "NODE_NAME", "RESET_SERVICE", "main"]

@@ -5,12 +5,10 @@ service and log lines, all through the ``rospy`` module :func:`ocean_warp.ros.ro
 from __future__ import annotations
 
 from . import ros1
-from .topics import CLOCK, TF, TF_STATIC
+from .topics import TF_STATIC, bus_name
 
-__all__ = ["GLOBAL_TOPICS", "Ros1Bus"]
+__all__ = ["Ros1Bus"]
 
-GLOBAL_TOPICS = (TF, TF_STATIC, CLOCK)
-"""Topics outside every namespace; a boat's topics are named relative to the node's namespace."""
 
 
 class Ros1Bus:
@@ -58,11 +56,8 @@ class Ros1Bus:
             self._started = False
             self.rospy.signal_shutdown(reason)
 
-    @staticmethod
-    def name(topic: str) -> str:
-        """The name a publisher or subscriber gets: global topics absolute, a boat's relative to the node's
-        namespace (``/eboat/gps/fix`` -> ``eboat/gps/fix``)."""
-        return topic if topic in GLOBAL_TOPICS else topic.lstrip("/")
+    name = staticmethod(bus_name)
+    """The name a publisher or subscriber gets (``topics.bus_name``)."""
 
     def publisher(self, topic: str, type_name: str, *, latch: bool = False):
         found = self._publishers.get(topic)

@@ -35,13 +35,11 @@ import threading
 
 import numpy as np
 
-from .topics import CLOCK, TF, TF_STATIC
+from .topics import TF_STATIC, bus_name
 
-__all__ = ["GLOBAL_TOPICS", "MESSAGE_MODULES", "Ros2Unavailable", "import_rclpy", "message_class", "to_ros2",
+__all__ = ["MESSAGE_MODULES", "Ros2Unavailable", "import_rclpy", "message_class", "to_ros2",
            "ros2_arguments", "Ros2Bus"]
 
-GLOBAL_TOPICS = (TF, TF_STATIC, CLOCK)
-"""Topics outside every namespace; a boat's topics are named relative to the node's namespace."""
 MESSAGE_MODULES = ("rclpy", "rclpy.node", "rclpy.executors", "rclpy.qos", "rclpy.parameter", "builtin_interfaces.msg",
                    "std_msgs.msg", "sensor_msgs.msg", "geometry_msgs.msg", "tf2_msgs.msg", "rosgraph_msgs.msg",
                    "std_srvs.srv")
@@ -246,11 +244,8 @@ class Ros2Bus:
             elif self.rclpy.ok():
                 self.rclpy.shutdown()
 
-    @staticmethod
-    def name(topic: str) -> str:
-        """The name a publisher or subscriber gets: global topics absolute, a boat's relative to the node's
-        namespace (``/eboat/gps/fix`` -> ``eboat/gps/fix``)."""
-        return topic if topic in GLOBAL_TOPICS else topic.lstrip("/")
+    name = staticmethod(bus_name)
+    """The name a publisher or subscriber gets (``topics.bus_name``)."""
 
     def publisher(self, topic: str, type_name: str, *, latch: bool = False):
         found = self._publishers.get(topic)

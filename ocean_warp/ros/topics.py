@@ -67,6 +67,8 @@ from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 from .geodesy import GUANABARA_BAY, GeodeticDatum, enu_to_geodetic
 
 __all__ = [
+    "GLOBAL_TOPICS",
+    "bus_name",
     "SEED_NAMESPACE", "SEED_OBSERVATION", "BOAT_TOPICS", "TF", "TF_STATIC", "CLOCK", "MAP_FRAME", "Message",
     "BoatSnapshot", "boat_namespace", "frame_id", "snapshot", "stamp", "seed_observation_values",
     "EPISODE_TOPIC", "NODE_TOPICS", "EPISODE_END", "episode_messages",
@@ -115,6 +117,16 @@ BOAT_TOPICS = {
 }
 """Each boat's topics, relative to its namespace, and their types (the module's table says what they hold)."""
 TF, TF_STATIC, CLOCK = "/tf", "/tf_static", "/clock"
+GLOBAL_TOPICS = (TF, TF_STATIC, CLOCK)
+"""Topics outside every namespace; a boat's topics are named relative to the node's namespace."""
+
+
+def bus_name(topic: str) -> str:
+    """The name a ROS publisher or subscriber gets for ``topic``: a global topic absolute, a boat's relative
+    to the node's namespace (``/eboat/gps/fix`` -> ``eboat/gps/fix``, so ``__ns`` moves it)."""
+    return topic if topic in GLOBAL_TOPICS else topic.lstrip("/")
+
+
 EPISODE_TOPIC = "mission_control/episode"
 NODE_TOPICS = {EPISODE_TOPIC: FLOAT32_MULTI_ARRAY}
 """Each boat's topics that only the ROS node publishes (not in the MCAP logs), relative to its namespace."""
