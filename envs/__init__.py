@@ -19,31 +19,31 @@ does) and the task ids (``registration``). By role, in subpackages (each ``__ini
   policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``.
 """
 
-from .protocol import BatchedEnv, EnvBuffers
-from .sailing_env import SailingEnv, environment_origins
-from .tasks.task_configs import (
-    AvoidConfig,
-    AvoidSailConfig,
-    BCDACA_ROUTE,
-    MISSION_WAYPOINTS,
-    MissionConfig,
-    MissionSailConfig,
-    ObservationSet,
-    ObstacleLayoutConfig,
-    RewardConfig,
-    StartConfig,
-    TaskConfig,
-    WaypointConfig,
-    WaypointPlusConfig,
-)
-
-__all__ = ["BatchedEnv", "SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig", "ObstacleLayoutConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE", "MISSION_WAYPOINTS"]
-
-from .interfaces.gym_env import SailingEnvSingle, SailingVectorEnv
 from .registration import TASK_IDS, make_task_config, register_envs
-from .interfaces.rsl_rl_env import RslRlVecEnv
 
-__all__ += ["RslRlVecEnv", "SailingVectorEnv", "SailingEnvSingle", "TASK_IDS", "make_task_config", "register_envs"]
+# The other public names, each with the module that holds it, imported on first use (PEP 562): the
+# command line's parsers import light modules of this package without loading Warp and torch.
+_PUBLIC = {
+    "BatchedEnv": "protocol", "EnvBuffers": "protocol",
+    "SailingEnv": "sailing_env", "environment_origins": "sailing_env",
+    **{name: "tasks.task_configs" for name in (
+        "AvoidConfig", "AvoidSailConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "MissionConfig", "MissionSailConfig",
+        "ObservationSet", "ObstacleLayoutConfig", "RewardConfig", "StartConfig", "TaskConfig", "WaypointConfig",
+        "WaypointPlusConfig")},
+    "SailingEnvSingle": "interfaces.gym_env", "SailingVectorEnv": "interfaces.gym_env",
+    "RslRlVecEnv": "interfaces.rsl_rl_env",
+}
+
+__all__ = ["BatchedEnv", "SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig",
+           "WaypointPlusConfig", "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig",
+           "ObstacleLayoutConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE",
+           "MISSION_WAYPOINTS", "RslRlVecEnv", "SailingVectorEnv", "SailingEnvSingle", "TASK_IDS",
+           "make_task_config", "register_envs"]
+
+
+from ocean_warp.lazy_names import lazy_attributes  # noqa: E402
+
+__getattr__, __dir__ = lazy_attributes(__name__, _PUBLIC)
+
 
 register_envs()

@@ -29,18 +29,41 @@ def _map_sibling_subpackages() -> None:
 
 _map_sibling_subpackages()
 
-from .boat_type import BoatType  # noqa: E402
-from .fleet import BoatStatus, Fleet, FleetTensors  # noqa: E402
-from .hull import Hull, HullRepairWarning  # noqa: E402
-from .hydrodynamics_config import HydrodynamicsConfig  # noqa: E402
-from .ocean import FftPlan, Ocean, SurfaceSample  # noqa: E402
-from .ocean_config import OceanConfig, Spectrum  # noqa: E402
-from .water_config import WaterConfig  # noqa: E402
-from .simulator import Simulator, SimulatorConfig  # noqa: E402
-from .wave_grid import RegularWave  # noqa: E402
-from .wind import Wind, WindConfig  # noqa: E402
-from .sensors import CHANNEL_NAMES, SensorConfig, Sensors  # noqa: E402
-from .eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig  # noqa: E402
+# The public names, each with the module that holds it. They are imported on first use (PEP 562), so that
+# ``import ocean_warp.<light module>`` (the command line's parsers, ``ocean-warp --help``) does not load Warp.
+_PUBLIC = {
+    "BoatType": "boat_type",
+    "BoatStatus": "fleet",
+    "Fleet": "fleet",
+    "FleetTensors": "fleet",
+    "Hull": "hull",
+    "HullRepairWarning": "hull",
+    "HydrodynamicsConfig": "hydrodynamics_config",
+    "FftPlan": "ocean",
+    "Ocean": "ocean",
+    "SurfaceSample": "ocean",
+    "OceanConfig": "ocean_config",
+    "Spectrum": "ocean_config",
+    "WaterConfig": "water_config",
+    "Simulator": "simulator",
+    "SimulatorConfig": "simulator",
+    "RegularWave": "wave_grid",
+    "Wind": "wind",
+    "WindConfig": "wind",
+    "CHANNEL_NAMES": "sensors",
+    "SensorConfig": "sensors",
+    "Sensors": "sensors",
+    "EBoat": "eboat",
+    "EBoatConfig": "eboat",
+    "EBoatSimulator": "eboat",
+    "EBoatSimulatorConfig": "eboat",
+}
+
+
+from .lazy_names import lazy_attributes  # noqa: E402
+
+__getattr__, __dir__ = lazy_attributes(__name__, _PUBLIC)
+
 
 __all__ = [
     "Ocean", "OceanConfig", "WaterConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan",
