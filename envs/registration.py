@@ -17,7 +17,7 @@ from typing import Any
 
 import gymnasium as gym
 
-__all__ = ["NAMESPACE", "TASK_IDS", "task_name", "make_task_config", "register_envs"]
+__all__ = ["NAMESPACE", "TASK_IDS", "DEFAULT_TASK", "task_name", "make_task_config", "register_envs"]
 
 NAMESPACE = "ocean_warp"
 """Gymnasium namespace of the ids registered here."""
@@ -25,6 +25,9 @@ NAMESPACE = "ocean_warp"
 TASK_IDS = ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0", "EBoatMissionSail-v0", "EBoatAvoid-v0",
             "EBoatAvoidSail-v0")
 """Task ids, without the namespace."""
+
+DEFAULT_TASK = "EBoatMission-v0"
+"""The task every ``ocean-warp`` job that takes ``--task`` sails without it: the BCDACA mission."""
 
 _CONFIG_CLASS_NAMES = {
     "EBoatWaypoint-v0": "WaypointConfig",

@@ -9,16 +9,21 @@ says ``ocean-warp <job>: <what failed>`` and exits with status 1.)
 from __future__ import annotations
 
 import argparse
+import ast
+import importlib.util
 import math
 import os
+import re
 import sys
+import tempfile
 from typing import NoReturn
 
 from .devices import DEVICE_FORMS, resolve_device
 
 __all__ = ["COMMAND", "HelpFormatter", "RawDescriptionHelpFormatter", "job_parser", "error_text", "fail",
            "report_error", "option_problem", "check_options", "finite_at_least",
-           "finite_above", "add_device_argument", "checked_device", "made_folder", "plural"]
+           "finite_above", "add_device_argument", "checked_device", "made_folder", "checked_output_folder",
+           "checked_output_file", "plain_text", "module_docstring", "plural"]
 
 COMMAND = "ocean-warp"
 """The command's name, as its usage lines say it."""
@@ -38,16 +43,62 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
             return text
         return super()._get_help_string(action)
 
+    def _fill_text(self, text, width, indent):
+        if text.startswith(EXAMPLES_HEADING):  # the examples epilog: one command a line, as written
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
+
+
+EXAMPLES_HEADING = "examples:\n"
+"""How a job's help epilog of example commands begins."""
+
 
 class RawDescriptionHelpFormatter(HelpFormatter, argparse.RawDescriptionHelpFormatter):
-    """:class:`HelpFormatter` that prints the description as written (a module docstring with its layout)."""
+    """:class:`HelpFormatter` that prints the description and epilog as written (their line breaks kept)."""
 
 
-def job_parser(job: str, description: str, *, raw_description: bool = False) -> argparse.ArgumentParser:
-    """The parser of ``ocean-warp <job>``: usage ``ocean-warp <job> [options]``, defaults in the help;
-    ``raw_description`` keeps the description's line breaks (a module docstring)."""
-    formatter = RawDescriptionHelpFormatter if raw_description else HelpFormatter
-    return argparse.ArgumentParser(prog=f"{COMMAND} {job}", description=description, formatter_class=formatter)
+def job_parser(job: str, description: str, *, long_help_from: str | None = None,
+               examples: tuple[str, ...] = ()) -> argparse.ArgumentParser:
+    """The parser of ``ocean-warp <job>``: usage ``ocean-warp <job> [options]``, ``description`` (a few
+    sentences) above the options, defaults in the help, ``examples`` (command lines) below them.
+    ``long_help_from``: the module whose docstring ``--help-long`` prints as plain text (read from its source,
+    not imported: Warp and torch stay unloaded)."""
+    epilog = EXAMPLES_HEADING + "".join(f"  {line}\n" for line in examples) if examples else None
+    parser = argparse.ArgumentParser(prog=f"{COMMAND} {job}", description=description, epilog=epilog,
+                                     formatter_class=HelpFormatter)
+    if long_help_from is not None:
+        parser.add_argument("--help-long", action=_LongHelp, module=long_help_from,
+                            help="show the long description (what the job does and writes, in detail) and exit")
+    return parser
+
+
+class _LongHelp(argparse.Action):
+    """``--help-long``: print a module's docstring as plain text and exit 0."""
+
+    def __init__(self, option_strings, dest, module: str, help=None):
+        super().__init__(option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, nargs=0, help=help)
+        self.module = module
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.exit(0, plain_text(module_docstring(self.module)).rstrip() + "\n")
+
+
+def module_docstring(name: str) -> str:
+    """The docstring of the module ``name``, read from its source file without importing it."""
+    spec = importlib.util.find_spec(name)
+    with open(spec.origin, encoding="utf-8") as source:
+        return ast.get_docstring(ast.parse(source.read()), clean=True) or ""
+
+
+_ROLE = re.compile(r":[a-z]+:`~?([^`<]*?)(?:\s*<[^>]*>)?`")
+"""An RST role, :class:`Name` or :func:`~a.b`: its text kept."""
+_LITERAL = re.compile(r"``([^`]+)``")
+"""An RST literal, ``code``: its text kept."""
+
+
+def plain_text(text: str) -> str:
+    """``text`` (a docstring in RST) as plain text: roles and literals become their bare text."""
+    return _LITERAL.sub(r"\1", _ROLE.sub(r"\1", text))
 
 
 def error_text(prog: str, message: str) -> str:
@@ -95,15 +146,15 @@ def finite_above(value, low: float) -> bool:
     return value is not None and math.isfinite(value) and value > low
 
 
-def add_device_argument(parser: argparse.ArgumentParser, default: str | None = "cpu") -> None:
-    """``--device``: a Warp device; None as ``default`` means Warp's preferred one (a GPU where there is one)."""
-    where = "Warp's preferred device: cuda:0 where there is a GPU, else cpu" if default is None else default
-    parser.add_argument("--device", default=default, help=f"Warp device: {DEVICE_FORMS} (default: {where})")
+def add_device_argument(parser: argparse.ArgumentParser) -> None:
+    """``--device``: a Warp device, by default "auto" (:func:`checked_device` resolves it)."""
+    parser.add_argument("--device", default="auto", help=f"Warp device: {DEVICE_FORMS} (default: auto)")
 
 
 def checked_device(parser: argparse.ArgumentParser, device: str | None) -> str:
-    """``device`` (``--device``'s value) resolved and checked (:func:`ocean_warp.devices.resolve_device`), or
-    :func:`fail` with why it cannot be used."""
+    """``device`` (``--device``'s value) resolved and checked, "auto" (or None) as Warp's preferred device
+    (:func:`ocean_warp.devices.resolve_device`: the one place every job resolves it), or :func:`fail` with
+    why it cannot be used."""
     try:
         return resolve_device(device, name="--device")
     except ValueError as error:
@@ -117,6 +168,50 @@ def made_folder(parser: argparse.ArgumentParser, folder: str, option: str = "--o
     except OSError as error:
         fail(parser, f"{option} {folder}: {error.strerror or error}")
     return folder
+
+
+def _writable_problem(folder: str) -> str | None:
+    """Why nothing can be written into ``folder``, or under it once its missing parts are made; None when
+    something can. Checked by making and removing a temporary file in the deepest folder that exists (nothing
+    is made where the check fails, and nothing is left behind)."""
+    existing = os.path.abspath(folder)
+    while not os.path.exists(existing):
+        existing = os.path.dirname(existing)
+    if not os.path.isdir(existing):
+        return f"{existing} is a file, not a folder"
+    try:
+        with tempfile.NamedTemporaryFile(dir=existing, prefix=".ocean-warp-check-"):
+            pass
+    except OSError as error:
+        return f"cannot write in {existing} ({error.strerror or error})"
+    return None
+
+
+def checked_output_folder(parser: argparse.ArgumentParser, folder: str, option: str = "--out") -> str:
+    """``folder`` (``option``'s value), a folder a job writes into, checked before the work starts: an
+    existing file there, a file in its path or a folder that cannot be written in is :func:`fail` with one
+    line naming ``option`` and ``folder``. Nothing is made."""
+    problem = ("is a file, not a folder" if os.path.exists(folder) and not os.path.isdir(folder)
+               else _writable_problem(folder))
+    if problem is not None:
+        fail(parser, f"{option} {folder}: {problem}")
+    return folder
+
+
+def checked_output_file(parser: argparse.ArgumentParser, path: str, option: str = "--out",
+                        suffixes: tuple[str, ...] = ()) -> str:
+    """``path`` (``option``'s value), a file a job writes, checked before the work starts: a folder there, a
+    suffix not among ``suffixes`` (any where empty), a file in its folder's path or a folder that cannot be
+    written in is :func:`fail` with one line naming ``option`` and ``path``. Nothing is made."""
+    if os.path.isdir(path):
+        fail(parser, f"{option} {path}: is a folder; give a file name"
+                     + (f" ending in {' or '.join(suffixes)}" if suffixes else ""))
+    if suffixes and not path.lower().endswith(tuple(suffix.lower() for suffix in suffixes)):
+        fail(parser, f"{option} {path}: must end in {' or '.join(suffixes)}")
+    problem = _writable_problem(os.path.dirname(os.path.abspath(path)))
+    if problem is not None:
+        fail(parser, f"{option} {path}: {problem}")
+    return path
 
 
 def plural(count: int, noun: str, plural_form: str | None = None) -> str:

@@ -25,7 +25,7 @@ __all__ = ["NO_DRIVER_WARNING", "DEVICE_FORMS", "cuda_driver_loadable", "init_wa
 NO_DRIVER_WARNING = "Warp CUDA warning: Could not find or load the NVIDIA CUDA driver."
 """How the line Warp prints where no NVIDIA driver loads begins (warp/native/cuda_util.cpp)."""
 
-DEVICE_FORMS = '"cpu", "cuda" (the first GPU) or "cuda:N"'
+DEVICE_FORMS = '"auto" (the first GPU where Warp sees one, else the CPU), "cpu", "cuda" (the first GPU) or "cuda:N"'
 """The device names the commands take, in words."""
 
 _DRIVER_LIBRARIES = ("nvcuda.dll",) if sys.platform == "win32" else ("libcuda.so", "libcuda.so.1")
@@ -85,8 +85,8 @@ def init_warp() -> None:
 
 def resolve_device(device: str | None, *, name: str = "device") -> str:
     """The Warp device ``device`` names, checked against the devices Warp sees: "cpu"; "cuda" (returned as
-    "cuda:0") or "cuda:N" where Warp sees at least N + 1 GPUs; None: Warp's preferred device ("cuda:0" where
-    there is a GPU, else "cpu"). Starts Warp (:func:`init_warp`).
+    "cuda:0") or "cuda:N" where Warp sees at least N + 1 GPUs; None or "auto": Warp's preferred device
+    ("cuda:0" where there is a GPU, else "cpu"). Starts Warp (:func:`init_warp`).
 
     Args:
         name: what the device is called in errors (a command passes its option, "--device").
@@ -97,9 +97,9 @@ def resolve_device(device: str | None, *, name: str = "device") -> str:
     init_warp()
     import warp as wp
 
-    if device is None:
+    text = None if device is None else str(device).strip()
+    if text is None or text == "auto":
         return str(wp.get_preferred_device())
-    text = str(device).strip()
     if text == "cpu":
         return text
     match = re.fullmatch(r"cuda(?::(\d+))?", text, flags=re.ASCII)

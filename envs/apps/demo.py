@@ -18,7 +18,6 @@ On a GPU it uses the mesh hull.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import math
 import os
@@ -27,13 +26,11 @@ import time
 
 import numpy as np
 
-from ocean_warp.cli_support import job_parser, plural, report_error
-from ocean_warp.devices import resolve_device
-from ocean_warp.validation import require_in_range, require_positive
+from ocean_warp.cli_support import checked_output_folder, checked_device, plural, report_error
 
 from ..sailing_env import SailingEnv
-from .fleet_scenario import (FleetScenario, add_scenario_arguments, controller_observation, scenario_arguments,
-                             shipped_policy_or_none)
+from .demo_options import DemoConfig, parser as _parser
+from .fleet_scenario import controller_observation, scenario_arguments, shipped_policy_or_none
 from .evaluation import (
     DEFAULT_TASK,
     AutopilotController,
@@ -42,43 +39,9 @@ from .evaluation import (
     PolicyController,
     sail_mission,
 )
-from ..training.policy_io import load_policy
+from ..training.policy_io import CheckpointError, Policy, load_policy
 
 __all__ = ["DemoConfig", "DemoResult", "demo_task", "run_demo", "main"]
-
-@dataclasses.dataclass(frozen=True)
-class DemoConfig(FleetScenario):
-    """What the demo sails and records (see :class:`FleetScenario` for the fleet, sea and stage)."""
-
-    ocean_resolution: int = 96
-    """At most this many ocean mesh vertices along a side: the area grows where boats got lost, so the
-    demo keeps the mesh finer than a plain scenario's 64 (a loop of 121 frames, a few MB)."""
-    policy_share: float = 0.5
-    """Fraction of the boats sailed by the task's shipped policy (the first ones); the rest by the autopilot
-    (every boat, on a task without a shipped policy)."""
-    time_limit: float = 1200.0
-    """Per boat [s]; a boat still sailing then counts as timed out."""
-    loop_period: float = 60.0
-    """The sea repeats every this many seconds [s], so the stage holds one seamless loop of it."""
-    usd: bool = True
-    """Write the USD stage (and its preview)."""
-
-    def __post_init__(self):
-        super().__post_init__()
-        owner = "DemoConfig"
-        require_in_range(owner, "policy_share", self.policy_share, 0.0, 1.0)
-        require_positive(owner, "time_limit", self.time_limit, unit=" [s]")
-        require_positive(owner, "loop_period", self.loop_period, unit=" [s]")
-        if not isinstance(self.usd, bool):
-            raise ValueError(f"{owner}.usd must be True or False, got {self.usd!r}")
-
-    @property
-    def policy_boats(self) -> int:
-        """Boats the shipped policy sails: the policy's share, or 0 on a task without a shipped policy."""
-        if shipped_policy_or_none(self.task_id) is None:
-            return 0
-        return int(round(self.policy_share * self.boats))
-
 
 @dataclasses.dataclass
 class DemoResult:
@@ -106,7 +69,8 @@ def demo_task(config: DemoConfig, device, observation=None) -> object:
 
 
 def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike = "out/demo",
-             progress: bool = True, recorder_factory=None, record: str | os.PathLike | None = None) -> DemoResult:
+             progress: bool = True, recorder_factory=None, record: str | os.PathLike | None = None,
+             policy: Policy | None = None) -> DemoResult:
     """Sail the demo's fleet once and write its files into ``out``.
 
     With ``config.usd`` the fleet is recorded into ``out/eboat_fleet.usdc`` (:mod:`.demo_stage`);
@@ -114,13 +78,16 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
     object with ``record(time_s, frames)``, ``abort()`` and ``close() -> dict[str, str]`` (files written).
     ``record``: also write a rosbag2 MCAP log there (a path ending in .mcap; the ``mcap`` extra), every boat
     under ``/eboat_<i>`` (``/eboat`` for one boat) at the start and after every decision
-    (``ocean_warp.ros.mcap_log``); its path is ``files["rosbag"]``.
+    (``ocean_warp.ros.mcap_log``); its path is ``files["rosbag"]``. ``policy``: the policy the policy's
+    share sails, loaded already (None: ``config.policy``'s file, else the task's shipped policy).
     """
     out = os.fspath(out)
     policy_mask = np.arange(config.boats) < config.policy_boats
     groups = []
     if policy_mask.any():
-        groups.append((PolicyController(load_policy(shipped_policy_or_none(config.task_id))), policy_mask))
+        if policy is None:
+            policy = load_policy(config.policy or shipped_policy_or_none(config.task_id))
+        groups.append((PolicyController(policy), policy_mask))
     if not policy_mask.all():
         groups.append((AutopilotController(), ~policy_mask))
     fleet = FleetController(groups, name="fleet")
@@ -209,28 +176,8 @@ def _summary(config: DemoConfig, result: DemoResult, hull: str) -> str:
     return "\n".join(lines)
 
 
-def _parser() -> argparse.ArgumentParser:
-    defaults = DemoConfig()
-    parser = job_parser("demo", "A fleet of E-Boats sails the BCDACA mission (or --task) in waves, half with the "
-                        "shipped policy and half with the classical autopilot; writes a USD stage with a preview "
-                        "PNG, trajectories.png and results.csv.")
-    add_scenario_arguments(parser, defaults)
-    parser.add_argument("--policy-share", type=float, default=defaults.policy_share,
-                        help="fraction of the boats sailed by the task's shipped policy (0-1)")
-    parser.add_argument("--time-limit", type=float, default=defaults.time_limit, metavar="SECONDS",
-                        help="per boat [s]")
-    parser.add_argument("--loop-period", type=float, default=defaults.loop_period, metavar="SECONDS",
-                        help="the sea repeats every this many seconds (one seamless loop in the stage)")
-    parser.add_argument("--no-usd", action="store_true", help="skip the USD stage and its preview")
-    parser.add_argument("--out", default="out/demo", help="folder for the stage, PNGs and tables")
-    parser.add_argument("--record", default=None, metavar="FILE.mcap",
-                        help="also write a rosbag2 MCAP log of the fleet, every boat under /eboat_<i> (needs the "
-                             "mcap extra: pip install 'ocean-warp[mcap]')")
-    return parser
-
-
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``ocean-warp demo``; returns the exit code (2 for a bad option)."""
+    """Entry point of ``ocean-warp demo``; returns the exit code (2 for a bad option or policy)."""
     parser = _parser()
     args = parser.parse_args(argv)
     if args.record is not None:
@@ -240,17 +187,29 @@ def main(argv: list[str] | None = None) -> int:
             check_record_path(args.record)
         except (ValueError, ImportError) as error:  # not a .mcap path; the mcap extra missing
             return report_error(parser.prog, f"--record: {error}")
+    checked_output_folder(parser, args.out)
     try:
         config = DemoConfig(**scenario_arguments(args), policy_share=args.policy_share, time_limit=args.time_limit,
-                            loop_period=args.loop_period, usd=not args.no_usd)
-        device = resolve_device(args.device, name="--device")
-        if config.policy_share > 0.0 and shipped_policy_or_none(config.task_id) is None:
-            print(f"no policy is shipped for {config.task_id}: the autopilot sails every boat")
-        os.makedirs(args.out, exist_ok=True)
-    except (ValueError, OSError) as error:  # a bad setting, task or device; an unusable --out
+                            loop_period=args.loop_period, usd=not args.no_usd, policy=args.policy)
+    except ValueError as error:  # a bad setting or task
         return report_error(parser.prog, str(error))
+    device = checked_device(parser, args.device)
+    policy = None
+    if config.policy is not None:
+        try:
+            policy = load_policy(config.policy)
+        except CheckpointError as error:
+            return report_error(parser.prog, f"--policy: {error}")
+        print(f"policy {config.policy}: for {policy.task}, observation {policy.observation!r} "
+              f"({policy.num_obs} values)")
+    elif config.policy_share > 0.0 and shipped_policy_or_none(config.task_id) is None:
+        print(f"no policy is shipped for {config.task_id}: the autopilot sails every boat")
     try:
-        result = run_demo(config, device=device, out=args.out, progress=not args.no_progress, record=args.record)
+        os.makedirs(args.out, exist_ok=True)
+        result = run_demo(config, device=device, out=args.out, progress=not args.no_progress, record=args.record,
+                          policy=policy)
+    except ValueError as error:  # a policy whose observation the task cannot give
+        return report_error(parser.prog, str(error))
     except OSError as error:  # a file could not be written
         print(f"{parser.prog}: {error}", file=sys.stderr)
         return 1

@@ -2,7 +2,7 @@
 by a policy and by the classical autopilot, with the paths drawn and the results tabled.
 
     ocean-warp eval                                  # the shipped mission policy and the autopilot, 20 runs
-    ocean-warp eval --policy out/train/policy.pt --device cuda:0
+    ocean-warp eval --policy out/train/EBoatMission-v0/<date>_<name>/policy.pt --device cuda:0
     ocean-warp eval --no-policy --runs 5 --sea-state 0.5 --wind 8 --seed 1
     ocean-warp eval --task EBoatMissionSail-v0       # the mission under sail alone (no motor)
     ocean-warp eval --task EBoatWaypoint-v0 --runs 50 --wind 6
@@ -99,13 +99,12 @@ import warp as wp
 
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.cli_support import (
-    add_device_argument,
     check_options,
     checked_device,
+    checked_output_folder,
     fail,
     finite_above,
     finite_at_least,
-    job_parser,
     plural,
 )
 from ocean_warp.fleet import BoatStatus
@@ -118,18 +117,17 @@ from ..controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
 from ..protocol import BatchedEnv
 from ..decision_hook import DecisionHook
 from ..sailing_env import SailingEnv
+from . import evaluation_options
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
 from ..training.policy_io import CheckpointError, Policy, load_policy
-from ..registration import TASK_IDS, make_task_config, task_name
+from ..registration import DEFAULT_TASK, make_task_config, task_name
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
 __all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
            "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "DEFAULT_TASK", "evaluation_task",
            "mission_task", "sail_mission", "evaluate_mission", "main"]
 
-DEFAULT_TASK = "EBoatMission-v0"
-"""The task ``ocean-warp eval`` sails without --task."""
 
 TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
                  "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
@@ -894,37 +892,6 @@ def _logging_callbacks(log, env: SailingEnv, name: str) -> dict:
             "on_decision": lambda k, decision: log.record(env, prefix=prefix)}
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = job_parser("eval", __doc__, raw_description=True)
-    parser.add_argument("--task", default=DEFAULT_TASK, metavar="ID",
-                        help=f"the task to sail: {', '.join(TASK_IDS)}, with or without 'ocean_warp/' "
-                             f"(default {DEFAULT_TASK})")
-    parser.add_argument("--policy", default=None, metavar="PATH",
-                        help="policy checkpoint to evaluate (default: the task's shipped policy, where it has one, "
-                             "in envs/training/policies/)")
-    parser.add_argument("--no-policy", action="store_true", help="sail the autopilot only")
-    parser.add_argument("--no-autopilot", action="store_true", help="sail the policy only")
-    parser.add_argument("--runs", type=int, default=20,
-                        help="runs per controller: missions, or episodes of a waypoint task (default 20)")
-    parser.add_argument("--sea-state", type=float, default=None, metavar="HS",
-                        help="significant wave height Hs of the task's sea [m] (default: the task's, 0.3 for the "
-                             "missions)")
-    parser.add_argument("--wind", type=float, default=None,
-                        help="mean true wind speed of every run [m/s] (default: the task's, 10 for the missions; "
-                             "the waypoint tasks draw it per run from their range unless this fixes it)")
-    parser.add_argument("--seed", type=int, default=0,
-                        help="seed of the sea, the gusts, the starts and the waypoints (default 0)")
-    parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",
-                        help="simulated time per run [s] (default: the task's episode time, 1800 for the missions)")
-    parser.add_argument("--out", default="out/eval", help="folder for the PNG, CSVs and NPZ (default out/eval)")
-    parser.add_argument("--record", default=None, metavar="FILE.mcap",
-                        help="also write a rosbag2 MCAP log of every controller's runs, each under /<controller> "
-                             "(needs the mcap extra: pip install 'ocean-warp[mcap]')")
-    add_device_argument(parser)
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
-    return parser
-
-
 def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
     """Exit with status 2 and one line on option values that cannot work (alone or together)."""
     check_options(parser, (
@@ -978,10 +945,11 @@ def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name:
 def main(argv=None) -> int:
     """``ocean-warp eval [options]``: returns 0; bad options, unknown task ids and unusable policies exit with
     status 2."""
-    parser = _parser()
+    parser = evaluation_options.parser()
     args = parser.parse_args(argv)
     wp.config.log_level = logging.WARNING
     _check_options(parser, args)
+    checked_output_folder(parser, args.out)
     try:
         name = task_name(args.task)
     except ValueError as error:
