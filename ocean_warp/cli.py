@@ -1,50 +1,95 @@
-"""The ``ocean-warp`` command: ``ocean-warp <job> [options]``; ``ocean-warp <job> --help`` for a job's options."""
+"""The ``ocean-warp`` command: ``ocean-warp <job> [options]``; ``ocean-warp <job> --help`` for a job's options.
+
+Each job's options live in a light module (its parser, no Warp or torch), so ``--help``, ``--help-long``
+and a mistyped option answer before the simulator loads; the job's own module is imported only once its
+options parse.
+"""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
+from .cli_support import COMMAND, RawDescriptionHelpFormatter
+
 JOBS = {
-    "demo": ("ocean_warp.envs.apps.demo", "a fleet sails the BCDACA mission in waves (policy and autopilot): USD stage, "
-             "PNGs, table"),
-    "ocean": ("ocean_warp.examples.ocean_snapshot", "a JONSWAP sea: height field and spectrum PNGs"),
-    "drop-hulls": ("ocean_warp.examples.drop_hulls", "hulls of several shapes dropped into waves: heave and roll"),
-    "train": ("ocean_warp.envs.training.train_loop", "train a sailing policy with rsl-rl PPO (progress, TensorBoard, checkpoints)"),
-    "polar": ("ocean_warp.examples.polar_chart", "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
-    "eval": ("ocean_warp.envs.apps.evaluation", "a task sailed many times in waves, policy vs autopilot: PNG and CSV "
-             "(--task ID: any registered task; default the BCDACA mission, 20 runs)"),
-    "export-usd": ("ocean_warp.envs.apps.usd_export", "record a scenario (boats, sea, wind, controller, duration) to a "
-                   "USD stage"),
-    "render": ("ocean_warp.envs.apps.render", "a video (MP4 or GIF) of a fleet's run, ray-traced from a chase or fixed "
-               "camera"),
-    "ros": ("ocean_warp.ros.node", "the simulator as a ROS 1 node: the seed's topics and standard ones, commands, a reset "
-            "service (Debian's ros-core and python3-rospy)"),
-    "export-policy": ("ocean_warp.ros.policy_export", "a policy checkpoint as ONNX or TorchScript, its observation "
-                      "normalisation inside (the onnx extra for ONNX)"),
+    "demo": ("ocean_warp.envs.apps.demo", "ocean_warp.envs.apps.demo_options",
+             "a fleet sails the BCDACA mission in waves (policy and autopilot): USD stage, PNGs, table"),
+    "ocean": ("ocean_warp.examples.ocean_snapshot", "ocean_warp.examples.ocean_snapshot_options",
+              "a JONSWAP sea: height field and spectrum PNGs"),
+    "drop-hulls": ("ocean_warp.examples.drop_hulls", "ocean_warp.examples.drop_hulls_options",
+                   "hulls of several shapes dropped into waves: heave and roll"),
+    "train": ("ocean_warp.envs.training.train_loop", "ocean_warp.envs.training.train_options",
+              "train a sailing policy with rsl-rl PPO (progress, TensorBoard, checkpoints)"),
+    "polar": ("ocean_warp.examples.polar_chart", "ocean_warp.examples.polar_chart_options",
+              "the E-Boat's speed polar for true wind 4, 7 and 10 m/s: PNG and CSV"),
+    "eval": ("ocean_warp.envs.apps.evaluation", "ocean_warp.envs.apps.evaluation_options",
+             "a task sailed many times in waves, policy vs autopilot: PNG and CSVs"),
+    "export-usd": ("ocean_warp.envs.apps.usd_export", "ocean_warp.envs.apps.usd_export_options",
+                   "record a scenario (boats, sea, wind, controller, duration) to a USD stage"),
+    "render": ("ocean_warp.envs.apps.render", "ocean_warp.envs.apps.render_options",
+               "a video (MP4 or GIF) of a fleet's run, ray-traced from a chase or fixed camera"),
+    "ros": ("ocean_warp.ros.node", "ocean_warp.ros.node_options",
+            "the simulator as a ROS node: the seed's topics and standard ones, commands, a reset service"),
+    "export-policy": ("ocean_warp.ros.policy_export", "ocean_warp.ros.policy_export_options",
+                      "a policy checkpoint as ONNX or TorchScript, its observation normalisation inside"),
 }
+"""Each job: the module whose ``main(argv)`` runs it, the light module whose ``parser()`` builds its options,
+and what it does, in a line."""
 
 
-def main(argv=None) -> None:
-    argv = sys.argv[1:] if argv is None else list(argv)
+def version() -> str:
+    """The installed distribution's version; the package's own where it is not installed."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("ocean-warp")
+    except metadata.PackageNotFoundError:
+        from . import __version__
+
+        return __version__
+
+
+def _parser() -> argparse.ArgumentParser:
+    width = max(len(name) for name in JOBS)
+    jobs = "\n".join(f"  {name:<{width}}  {text}" for name, (_, _, text) in JOBS.items())
     parser = argparse.ArgumentParser(
-        prog="ocean-warp", description="ocean_warp's jobs: `ocean-warp <job> [options]`; `ocean-warp <job> --help` "
-        "gives a job's options with their defaults and units.")
-    parser.add_argument("job", choices=sorted(JOBS), help="; ".join(f"{name}: {text}" for name, (_, text) in JOBS.items()))
-    args, rest = parser.parse_known_args(argv[:1])
+        prog=COMMAND, formatter_class=RawDescriptionHelpFormatter,
+        description="ocean_warp's jobs: `ocean-warp <job> [options]`; `ocean-warp <job> --help` gives a job's\n"
+                    "options with their defaults and units, `ocean-warp <job> --help-long` what it does in detail.",
+        epilog=f"jobs:\n{jobs}")
+    parser.add_argument("--version", action="version", version=f"{COMMAND} {version()}")
+    parser.add_argument("job", choices=list(JOBS), metavar="job", help="one of the jobs below")
+    return parser
+
+
+def _run(argv: list[str]) -> int:
+    """Parse the job and its options (light modules only), then load the job's module and run it."""
+    import importlib
+
+    args, rest = _parser().parse_known_args(argv[:1])
+    job_module, options_module, _ = JOBS[args.job]
+    importlib.import_module(options_module).parser().parse_args(argv[1:] + rest)  # --help, or exit 2 on a typo
     import warp as wp
 
     from .devices import init_warp
 
     wp.config.log_level = wp.LOG_WARNING  # Warp's banner and module-load lines would bury the summary
     init_warp()  # without the no-driver warning Warp would print on a machine without a GPU
-    module_name = JOBS[args.job][0]
-    module = __import__(module_name, fromlist=["main"])
+    return importlib.import_module(job_module).main(argv[1:] + rest) or 0
+
+
+def main(argv=None) -> None:
+    """``ocean-warp``: exits with the job's status; Ctrl-C at any moment (the imports included) is one line and
+    status 130."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    job = argv[0] if argv and argv[0] in JOBS else None
     try:
-        code = module.main(argv[1:] + rest)
+        code = _run(argv)
     except KeyboardInterrupt:
         # Every file is written atomically: what was written before Ctrl-C is whole, nothing is half-written.
-        print(f"ocean-warp {args.job}: interrupted; files written before it are complete", file=sys.stderr)
+        print(f"{COMMAND}{f' {job}' if job else ''}: interrupted; files written before it are complete",
+              file=sys.stderr)
         sys.exit(130)
     if code:
         sys.exit(code)

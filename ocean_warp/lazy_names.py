@@ -13,7 +13,8 @@ def lazy_attributes(package: str, public: dict[str, str]):
 
     Args:
         package: the package's ``__name__``.
-        public: each public name and the submodule (relative to ``package``) that holds it.
+        public: each public name and the module that holds it, relative to ``package`` ("recorder" for
+            ``package.recorder``; a leading dot climbs as in a relative import: "..eboat.parts").
 
     ``package.<name>`` is then the public name, imported from its module on first use and kept in the
     package's namespace, or else the submodule ``package.<name>``; ``AttributeError`` where neither exists.
@@ -22,7 +23,9 @@ def lazy_attributes(package: str, public: dict[str, str]):
 
     def __getattr__(name: str):
         if name in public:
-            value = getattr(importlib.import_module(f"{package}.{public[name]}"), name)
+            module = public[name]
+            value = getattr(importlib.import_module(module if module.startswith(".") else f".{module}", package),
+                            name)
             namespace[name] = value
             return value
         try:

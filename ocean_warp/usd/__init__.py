@@ -18,18 +18,24 @@ Stages are Z up, 1 metre per unit, with timeCodesPerSecond = framesPerSecond = `
 (default 24; time code = time [s] x that), so they play in real time whatever ``fps`` they were recorded
 at. What a recorder draws is given in option groups (:mod:`ocean_warp.usd.stage_options`):
 ``OceanDrawing``, ``FleetDrawing``, ``RouteDrawing`` and ``WindArrow``. The prim layout and model kinds are
-in :mod:`ocean_warp.usd.paths`. Importing this package imports ``pxr`` (usd-core).
+in :mod:`ocean_warp.usd.paths`. Each name here imports ``pxr`` (usd-core) on first use, not before.
 """
 
-from ..eboat.parts import BoatParts, eboat_parts
-from .ocean_mesh import OceanLattice
-from .preview import render_preview
-from .recorder import (INSTANCING_THRESHOLD, TIME_CODES_PER_SECOND, StageRecorder, loop_path_for, record_eboat,
-                       write_ocean_loop)
-from .stage_file import check_stage_path
-from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow
-from .stage_validation import validate_stage
+from ocean_warp.lazy_names import lazy_attributes
+
+# Each public name and its module, imported on first use (PEP 562): a light module of this package
+# (``playback``) loads without ``pxr``.
+_PUBLIC = {
+    "BoatParts": "..eboat.parts", "eboat_parts": "..eboat.parts", "OceanLattice": "ocean_mesh",
+    "render_preview": "preview", "INSTANCING_THRESHOLD": "recorder", "TIME_CODES_PER_SECOND": "playback",
+    "StageRecorder": "recorder", "loop_path_for": "recorder", "record_eboat": "recorder",
+    "write_ocean_loop": "recorder", "check_stage_path": "stage_file", "FleetDrawing": "stage_options",
+    "OceanDrawing": "stage_options", "RouteDrawing": "stage_options", "WindArrow": "stage_options",
+    "validate_stage": "stage_validation",
+}
 
 __all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "validate_stage", "render_preview",
            "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
            "loop_path_for", "check_stage_path", "OceanDrawing", "FleetDrawing", "RouteDrawing", "WindArrow"]
+
+__getattr__, __dir__ = lazy_attributes(__name__, _PUBLIC)

@@ -39,6 +39,7 @@ from .boat_prototype import define_boat_prototype
 from .fleet_prims import InstancedFleetWriter, PrimFleetWriter
 from .markers import define_route, define_wind_arrow
 from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
+from .playback import TIME_CODES_PER_SECOND
 from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST
 from .stage_file import StageFile
 from .scene_prims import LidarPointsWriter, ObjectsWriter
@@ -50,9 +51,6 @@ __all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "INSTANCING_THRE
 
 INSTANCING_THRESHOLD = 64
 """Fleets larger than this are written as point instancers unless ``FleetDrawing.instanced`` says otherwise."""
-TIME_CODES_PER_SECOND = 24.0
-"""Default time codes (and frames) per second of a stage: Blender's default frame rate, so it plays the
-stage in real time."""
 
 
 def loop_path_for(path) -> str:
