@@ -34,7 +34,8 @@ JOBS = {
     "export-policy": ("ocean_warp.ros.policy_export", "ocean_warp.ros.policy_export_options",
                       "a policy checkpoint as ONNX or TorchScript, its observation normalisation inside"),
 }
-"""Each job: the module whose ``main(argv)`` runs it, the light module whose ``parser()`` builds its options,
+"""Each job: the module whose ``main(argv)`` runs it, the light module whose ``parser()`` builds its options
+(and, where the job takes arguments that are not options, whose ``own_arguments(argv)`` picks the options),
 and what it does, in a line."""
 
 
@@ -69,7 +70,9 @@ def _run(argv: list[str]) -> int:
 
     args, rest = _parser().parse_known_args(argv[:1])
     job_module, options_module, _ = JOBS[args.job]
-    importlib.import_module(options_module).parser().parse_args(argv[1:] + rest)  # --help, or exit 2 on a typo
+    options = importlib.import_module(options_module)
+    own = getattr(options, "own_arguments", list)  # ros: all but rospy's name:=value remaps
+    options.parser().parse_args(own(argv[1:] + rest))  # --help and --help-long, or exit 2 on a typo
     import warp as wp
 
     from .devices import init_warp

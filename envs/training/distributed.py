@@ -44,11 +44,11 @@ import numpy as np
 import torch
 from rsl_rl.runners import OnPolicyRunner
 
+from .train_options import DEFAULT_TIMEOUT_S
+
 __all__ = ["RankContext", "RankFailure", "Ranks", "DistributedRunner", "DEFAULT_TIMEOUT_S", "rank_device",
            "rank_seed", "derived_seed", "backend_for", "parameter_checksum", "inject_fault", "FAULT_VARIABLE"]
 
-DEFAULT_TIMEOUT_S = 300.0
-"""[s] How long a rank waits for the others in any collective (and at startup) before it gives up."""
 
 FAULT_VARIABLE = "OCEAN_WARP_FAULT"
 """Fault injection for tests: ``"<rank>:<iteration>:<kind>"`` makes that rank fail after collecting that

@@ -4,11 +4,11 @@ checkpoints that resume bit for bit, a sea-state curriculum, and the exported po
     ocean-warp train --task EBoatWaypoint-v0 --device cpu --minutes 20
     ocean-warp train --task EBoatWaypoint-v0 --device cpu --workers 8 --num-envs 512
     ocean-warp train --task EBoatMission-v0 --device cuda --iterations 250 --run-name h100
-    ocean-warp train --task EBoatMission-v0 --resume runs/EBoatMission-v0/<date>_<name>/model_99.pt
+    ocean-warp train --task EBoatMission-v0 --resume out/train/EBoatMission-v0/<date>_<name>/model_99.pt
     ocean-warp train --task EBoatMission-v0 --gpus 2 --minutes 5          # 2 GPUs, 4096 envs on each
     torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --device cpu ...   # 2 CPU processes
 
-A run writes into ``runs/<task>/<date>_<name>/``: ``config.json`` (the resolved config),
+A run writes into ``out/train/<task>/<date>_<name>/`` (``--runs-root``, default ``out/train``): ``config.json`` (the resolved config),
 rsl-rl's TensorBoard events, ``progress.csv`` (one row per iteration, rewritten after each),
 ``model_<it>.pt`` every
 ``save_interval`` iterations and at the end, and ``policy.pt`` (the actor alone, kilobytes).
@@ -50,7 +50,7 @@ import numpy as np
 import torch
 
 from ocean_warp.atomic_files import atomic_output
-from ocean_warp.cli_support import finite_above, job_parser, option_problem, plural, report_error
+from ocean_warp.cli_support import (checked_output_folder, finite_above, option_problem, plural, report_error)
 from ocean_warp.devices import resolve_device
 
 from .agents import TrainConfig, agent_config
@@ -70,9 +70,11 @@ from .distributed import (
 )
 from .distributed_launch import gpus_problem, launch, torchrun_command, visible_gpus
 from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
+from .train_options import RUNS_ROOT, parser as _parser
 from ..interfaces.rsl_rl_env import RslRlVecEnv
 from ..parallel.sharded import ShardedSailingEnv
 from ..protocol import BatchedEnv
+from ..registration import task_name
 
 __all__ = ["train", "Training", "TrainLength", "RunOutput", "Placement", "TrainResult", "apply_overrides", "main"]
 
@@ -207,7 +209,7 @@ class RunOutput:
     """The run folder (default ``runs_root/<task>/<date>_<run_name>``; resumed: the checkpoint's folder)."""
     run_name: str | None = None
     """Suffix of the default run folder's name."""
-    runs_root: str = "runs"
+    runs_root: str = RUNS_ROOT
     """Folder that holds ``<task>/<date>_<name>/``."""
     progress: bool = True
     """Show a progress bar."""
@@ -727,40 +729,6 @@ def _replace_path(obj: Any, names: list[str], value: Any, full: str) -> Any:
     return dataclasses.replace(obj, **{names[0]: value})
 
 
-def _parser() -> argparse.ArgumentParser:
-    from .agents import AGENT_CONFIGS
-
-    parser = job_parser("train", "Train a sailing policy with rsl-rl PPO (progress bar, TensorBoard logs, atomic "
-                        "checkpoints in runs/<task>/<date>_<name>/, the policy exported as policy.pt).")
-    parser.add_argument("--task", default="EBoatWaypoint-v0", choices=list(AGENT_CONFIGS), help="task id")
-    parser.add_argument("--device", default=argparse.SUPPRESS,
-                        help="cpu, cuda or cuda:N (simulator and networks; default: cpu, or cuda with --gpus)")
-    parser.add_argument("--num-envs", type=int, default=None,
-                        help="parallel boats per process (rank) (default: the task's, 256 on the CPU, 4096 on a GPU)")
-    length = parser.add_argument_group("how long (either, or both: the first reached ends it)")
-    length.add_argument("--iterations", type=int, default=None, help="PPO iterations (default: the task's)")
-    length.add_argument("--minutes", type=float, default=None, help="wall-time limit [minutes]")
-    parser.add_argument("--seed", type=int, default=0, help="seed of environments, networks and sampling")
-    parser.add_argument("--run-name", default=None, help="suffix of the run folder")
-    parser.add_argument("--runs-root", default="runs", help="folder that holds <task>/<date>_<name>/")
-    parser.add_argument("--resume", default=None, metavar="PATH",
-                        help="continue from a training checkpoint (model_<it>.pt), in its folder")
-    parser.add_argument("--set", dest="overrides", action="append", default=[], metavar="FIELD=VALUE",
-                        help="change a field of the task's TrainConfig, e.g. ppo.learning_rate=3e-4, "
-                        "steps_per_env=32, train_task.decision_period=2.0 (repeatable)")
-    parser.add_argument("--workers", type=int, default=1,
-                        help="CPU only: simulate the environments in this many processes, one core each "
-                        "(default 1: in this process)")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
-    ranks = parser.add_argument_group("several GPUs (torchrun; see ocean_warp.envs.training.distributed)")
-    ranks.add_argument("--gpus", default=None, metavar="G",
-                       help="train one policy on G GPUs of this host: starts torchrun with G ranks, each with "
-                       "--num-envs environments on its own GPU (default: this process, one device)")
-    ranks.add_argument("--dist-timeout", type=float, default=DEFAULT_TIMEOUT_S, metavar="SECONDS",
-                       help="with several ranks: the longest a rank waits for the others before the job stops")
-    return parser
-
-
 def _option_problem(args: argparse.Namespace) -> str | None:
     """What is wrong with the options' values, in one line; None when nothing is."""
     return option_problem((
@@ -768,6 +736,8 @@ def _option_problem(args: argparse.Namespace) -> str | None:
         ("--iterations", args.iterations, args.iterations is None or args.iterations >= 1, "a whole number >= 1"),
         ("--minutes", args.minutes, args.minutes is None or finite_above(args.minutes, 0.0), "a number > 0"),
         ("--workers", args.workers, args.workers >= 1, "a whole number >= 1"),
+        ("--torch-threads", args.torch_threads, args.torch_threads is None or args.torch_threads >= 1,
+         "a whole number >= 1"),
         ("--dist-timeout", args.dist_timeout, finite_above(args.dist_timeout, 0.0), "a number of seconds > 0"),
     ))
 
@@ -781,7 +751,13 @@ def main(argv: list[str] | None = None) -> int:
     problem = _option_problem(args)
     if problem is not None:
         return report_error(parser.prog, problem)
-    device = getattr(args, "device", None)
+    try:
+        task = task_name(args.task)
+    except ValueError as error:
+        return report_error(parser.prog, f"--task: {error}")
+    if args.resume is None:
+        checked_output_folder(parser, args.runs_root, "--runs-root")
+    device = None if args.device == "auto" else args.device  # None: Warp's preferred device
     if args.gpus is not None:
         problem = gpus_problem(args.gpus, device, visible_gpus())
         if problem is not None:
@@ -794,16 +770,21 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:
         return report_error(parser.prog, str(error))
     try:
-        if device is not None and not context.distributed:
-            resolve_device(device, name="--device")  # named as the option; train() resolves it again
-        config = apply_overrides(agent_config(args.task), args.overrides)
+        if not context.distributed:
+            device = resolve_device(device, name="--device")  # None ("auto"): Warp's preferred device
+        elif device is None:  # each rank on its own GPU where there are GPUs
+            device = "cuda" if resolve_device(None).startswith("cuda") else "cpu"
+        threads = _torch_threads(args.torch_threads, device)
+        if context.is_main:
+            print(f"{parser.prog}: {task} on {device}, torch threads {threads}")
+        config = apply_overrides(agent_config(task), args.overrides)
         if args.minutes is not None and args.iterations is None:
             iterations = 10**9
         else:
             iterations = args.iterations
         result = train(config, seed=args.seed, length=TrainLength(iterations, args.minutes),
                        output=RunOutput(run_name=args.run_name, runs_root=args.runs_root, progress=not args.no_progress),
-                       placement=Placement(device=device or "cpu", num_envs=args.num_envs, workers=args.workers,
+                       placement=Placement(device=device, num_envs=args.num_envs, workers=args.workers,
                                            rank=context, dist_timeout=args.dist_timeout),
                        resume=args.resume)
     except RankFailure as error:
@@ -822,6 +803,17 @@ def main(argv: list[str] | None = None) -> int:
     if result.parameter_checksums:
         print(f"{result.world_size} ranks ended with identical networks (sha256 {result.parameter_checksums[0][:16]}...)")
     return 0
+
+
+def _torch_threads(requested: int | None, device: str) -> int:
+    """Set torch's CPU threads in this process: ``requested`` (--torch-threads), else 1 on the CPU (the small
+    networks gain nothing from more, and more threads contend with Warp's: 10 times slower on a busy two-core
+    machine) and torch's own default on a GPU. Returns the count in use. ``--workers`` processes set one
+    each themselves (``ocean_warp.envs.parallel.sharded``)."""
+    if requested is None and device.startswith("cuda"):
+        return torch.get_num_threads()
+    torch.set_num_threads(requested or 1)
+    return torch.get_num_threads()
 
 
 def _rank_prefix(context: RankContext) -> str:

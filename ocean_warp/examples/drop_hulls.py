@@ -18,14 +18,13 @@ import warp as wp
 import ocean_warp as ow
 from ocean_warp.atomic_files import atomic_output, save_figure
 from ocean_warp.cli_support import (
-    add_device_argument,
     check_options,
     checked_device,
+    checked_output_folder,
     finite_at_least,
-    job_parser,
-    made_folder,
     plural,
 )
+from ocean_warp.examples.drop_hulls_options import MAX_BOATS_PER_SHAPE, parser as _parser
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 
 SHAPES = {
@@ -114,20 +113,17 @@ def _write_csv(path, times, heave, roll, names) -> None:
 
 def main(argv=None) -> int:
     """``ocean-warp drop-hulls``: returns 0; bad options exit with status 2 and one line."""
-    parser = job_parser("drop-hulls", f"Hulls of {len(SHAPES)} shapes ({', '.join(SHAPES)}) dropped into a JONSWAP "
-                        "sea: heave and roll of each over time (hull_motions.png and hull_motions.csv).")
-    parser.add_argument("--out", default="out/drop_hulls", help="folder for the PNG and CSV")
-    add_device_argument(parser, default=None)
-    parser.add_argument("--boats-per-shape", type=int, default=8, metavar="N", help="hulls of each shape")
-    parser.add_argument("--seconds", type=float, default=40.0, help="simulated time [s]")
+    parser = _parser()
     args = parser.parse_args(argv)
     check_options(parser, (
-        ("--boats-per-shape", args.boats_per_shape, args.boats_per_shape >= 1, "a whole number >= 1"),
+        ("--boats-per-shape", args.boats_per_shape, 1 <= args.boats_per_shape <= MAX_BOATS_PER_SHAPE,
+         f"a whole number from 1 to {MAX_BOATS_PER_SHAPE} (the heave and roll of every hull are kept at every step)"),
         ("--seconds", args.seconds, finite_at_least(args.seconds, DT), f"a number of seconds >= one step ({DT} s)"),
     ))
     device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    made_folder(parser, args.out)
+    checked_output_folder(parser, args.out)
+    os.makedirs(args.out, exist_ok=True)
     report = run(args.out, device=device, boats_per_shape=args.boats_per_shape, seconds=args.seconds)
     print(f"{plural(report['boats'], 'hull')} on {report['device']} for {args.seconds:g} s, "
           f"{report['flagged']} flagged (capsized, sunk, flying or non-finite)")

@@ -20,15 +20,15 @@ import warp as wp
 from ocean_warp import Ocean, OceanConfig, spectra
 from ocean_warp.atomic_files import save_figure
 from ocean_warp.cli_support import (
-    add_device_argument,
     check_options,
     checked_device,
+    checked_output_folder,
     finite_above,
     finite_at_least,
-    job_parser,
-    made_folder,
 )
 from ocean_warp.ocean_config import MAX_RESOLUTION, MIN_RESOLUTION
+
+from .ocean_snapshot_options import parser as _parser
 
 
 def measured_frequency_spectrum(heights: list[np.ndarray], config: OceanConfig, bin_width: float):
@@ -111,16 +111,7 @@ def run(out_dir: str, *, device=None, resolution: int = 256, significant_wave_he
 
 def main(argv=None) -> int:
     """``ocean-warp ocean``: returns 0; bad options exit with status 2 and one line."""
-    parser = job_parser("ocean", "A JONSWAP sea, advanced in time: its height field and its spectrum (the target "
-                        "against the one measured on the grid), as PNGs.")
-    parser.add_argument("--out", default="out/ocean", help="folder for the PNGs")
-    add_device_argument(parser, default=None)
-    parser.add_argument("--resolution", type=int, default=256,
-                        help=f"grid points per side (a power of two, {MIN_RESOLUTION} to {MAX_RESOLUTION}); the "
-                        "tile is 4 m per point")
-    parser.add_argument("--hs", type=float, default=2.0, help="significant wave height [m]")
-    parser.add_argument("--tp", type=float, default=8.0, help="peak period [s]")
-    parser.add_argument("--seconds", type=float, default=120.0, help="simulated time [s]")
+    parser = _parser()
     args = parser.parse_args(argv)
     resolution = args.resolution
     check_options(parser, (
@@ -133,7 +124,8 @@ def main(argv=None) -> int:
     ))
     device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    made_folder(parser, args.out)
+    checked_output_folder(parser, args.out)
+    os.makedirs(args.out, exist_ok=True)
     report = run(args.out, device=device, resolution=args.resolution, significant_wave_height=args.hs,
                  peak_period=args.tp, seconds=args.seconds)
     print(f"ocean on {report['device']}: Hs on the grid {report['grid_hs']:.3f} m, measured {report['measured_hs']:.3f} m, "

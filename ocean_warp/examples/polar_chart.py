@@ -21,16 +21,15 @@ import warp as wp
 
 from ocean_warp.atomic_files import atomic_output, save_figure
 from ocean_warp.cli_support import (
-    add_device_argument,
     check_options,
     checked_device,
+    checked_output_folder,
     finite_above,
     finite_at_least,
-    job_parser,
-    made_folder,
     plural,
 )
 from ocean_warp.eboat import EBoat
+from ocean_warp.examples.polar_chart_options import parser as _parser
 from ocean_warp.eboat.polar import PolarResult, speed_polar
 
 
@@ -73,18 +72,7 @@ def plot(path: str, result: PolarResult, limit: float) -> None:
 
 def main(argv=None) -> int:
     """``ocean-warp polar``: returns 0; bad options exit with status 2 and one line."""
-    parser = job_parser("polar", "The E-Boat's speed polar: steady speed over true wind angles 0-180 deg, the "
-                        "sheet trimmed for speed (polar.png and polar.csv).")
-    parser.add_argument("--out", default="out/polar", help="folder for polar.png and polar.csv")
-    add_device_argument(parser, default=None)
-    parser.add_argument("--wind-speeds", type=float, nargs="+", default=[4.0, 7.0, 10.0], metavar="MPS",
-                        help="true wind speeds [m/s] (default: 4 7 10)")
-    parser.add_argument("--angle-step", type=float, default=15.0, metavar="DEG",
-                        help="true wind angle step [deg] (angles 0 to 180)")
-    parser.add_argument("--sheet-step", type=float, default=15.0, metavar="DEG",
-                        help="sheet search step [deg] (settings 0 to 90)")
-    parser.add_argument("--settle", type=float, default=60.0, metavar="SECONDS",
-                        help="settling time before the speed is averaged [s]")
+    parser = _parser()
     args = parser.parse_args(argv)
     bad_wind = next((v for v in args.wind_speeds if not finite_above(v, 0.0)), None)
     check_options(parser, (
@@ -97,7 +85,8 @@ def main(argv=None) -> int:
     ))
     device = checked_device(parser, args.device)
     wp.config.log_level = logging.WARNING
-    made_folder(parser, args.out)
+    checked_output_folder(parser, args.out)
+    os.makedirs(args.out, exist_ok=True)
     eboat = EBoat()
     start = time.perf_counter()
     result = speed_polar(wind_speeds=args.wind_speeds, wind_angles_deg=np.arange(0.0, 180.0 + 1e-9, args.angle_step),

@@ -2,8 +2,8 @@
 (rclpy; written against rclpy's documented API and checked only with fakes, never with a real rclpy).
 
     roscore &
-    ocean-warp ros                                       # one boat of EBoatWaypoint-v0, in real time
-    ocean-warp ros --boats 4 --rate-factor 10 --record run.mcap
+    ocean-warp ros                                       # one boat of EBoatMission-v0, in real time
+    ocean-warp ros --boats 4 --rate-factor 10 --record out/ros/run.mcap
     ocean-warp ros --lockstep --as-fast-as-possible      # each decision waits for a controller's commands
     ocean-warp ros /eboat/gps/fix:=/fix                  # rospy's remapping arguments
 
@@ -41,63 +41,18 @@ import argparse
 import dataclasses
 import sys
 
-from ocean_warp.cli_support import (add_device_argument, check_options, checked_device, fail, finite_above,
-                                    finite_at_least, job_parser, plural, report_error)
+from ocean_warp.cli_support import (check_options, checked_device, checked_output_file, fail, finite_above,
+                                    finite_at_least, plural, report_error)
 
 from . import ros1
+from .node_options import parser as _parser
 from .node_loop import PROG, RESET_SERVICE, NodeLoop
 from .ros1_bus import Ros1Bus
 from .topics import (BOAT_TOPICS, GLOBAL_TOPICS, NODE_TOPICS, boat_namespace, camera_messages, clock_message, env_lidar,
                      episode_messages, lidar_messages, snapshot, state_messages, static_messages)
 
-__all__ = ["DEFAULT_TASK", "NODE_NAME", "RESET_SERVICE", "main"]
-
-DEFAULT_TASK = "EBoatWaypoint-v0"
-"""The seed's task (the four-point hull: fast on a CPU)."""
+__all__ = ["NODE_NAME", "RESET_SERVICE", "main"]
 NODE_NAME = "ocean_warp"
-JOB = "ros"
-
-
-@dataclasses.dataclass(frozen=True)
-class _Defaults:
-    task_id: str = DEFAULT_TASK
-    boats: int = 1
-    sea_state: float | None = None
-    wind: float | None = None
-    seed: int = 0
-    hull: str = "auto"
-
-
-def _parser() -> argparse.ArgumentParser:
-    from ocean_warp.envs.apps.fleet_scenario import add_sailing_arguments
-
-    parser = job_parser(JOB, __doc__, raw_description=True)
-    add_sailing_arguments(parser, _Defaults())
-    parser.add_argument("--rate-factor", type=float, default=1.0, metavar="F",
-                        help="simulated seconds per wall-clock second (1: real time; 0: as fast as possible)")
-    parser.add_argument("--as-fast-as-possible", action="store_true", help="no sleeping: --rate-factor 0")
-    parser.add_argument("--duration", type=float, default=None, metavar="SECONDS",
-                        help="stop when the simulated clock reaches this [s] (default: run until shut down)")
-    parser.add_argument("--lockstep", action="store_true",
-                        help="each decision waits for every boat's sail, rudder and propulsion commands (what "
-                             "the controller node sends for each observation); the observations are latched")
-    parser.add_argument("--lockstep-timeout", type=float, default=0.0, metavar="SECONDS",
-                        help="with --lockstep: step with the commands held after this long without them [s, wall "
-                             "clock] (default 0: wait for them)")
-    parser.add_argument("--lidar", action="store_true",
-                        help="a 360-beam lidar (the avoidance task's) on every boat of a task without one, "
-                             "published on lidar/scan")
-    parser.add_argument("--camera", action="store_true",
-                        help="a 64 x 64 bow camera on every boat: RGB and depth images once per decision")
-    parser.add_argument("--record", default=None, metavar="FILE.mcap",
-                        help="also write a rosbag2 MCAP log of the run (needs the mcap extra: pip install "
-                             "'ocean-warp[mcap]')")
-    parser.add_argument("--ros", choices=("1", "2", "auto"), default="auto",
-                        help="ROS 1 (rospy, needs a master) or ROS 2 (rclpy, DDS discovery; written against "
-                             "rclpy's documented API and tested only with fakes); auto (default): ROS 1 where "
-                             "rospy is found, else ROS 2 where rclpy imports")
-    add_device_argument(parser)
-    return parser
 
 
 def _check(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
@@ -149,6 +104,8 @@ def main(argv=None) -> int:
     except ValueError as error:
         fail(parser, str(error))
     device = checked_device(parser, args.device)
+    if args.record is not None:
+        checked_output_file(parser, args.record, "--record", (".mcap",))
     namespace = ros1.namespace_of(remaps)
     node = ros1.resolve(_node_name(remaps), namespace, "/")
     problem = ros1.unknown_remap(remaps, _known_names(args.boats, namespace, node), namespace, node)

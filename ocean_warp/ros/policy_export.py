@@ -2,7 +2,7 @@
 or TorchScript (libtorch, C++ or Python).
 
     ocean-warp export-policy --task EBoatMission-v0                       # the shipped policy, as ONNX
-    ocean-warp export-policy --policy runs/x/policy.pt --out boat/policy.onnx
+    ocean-warp export-policy --policy out/train/EBoatMission-v0/<date>_<name>/policy.pt --out out/export-policy/boat.onnx
     ocean-warp export-policy --task EBoatAvoid-v0 --format torchscript
 
 The exported graph takes the raw observation, float32 (batch, num_obs) with any batch, named "observation",
@@ -40,9 +40,11 @@ import numpy as np
 import torch
 
 from ocean_warp.atomic_files import atomic_output
-from ocean_warp.cli_support import check_options, fail, job_parser, made_folder
+from ocean_warp.cli_support import check_options, checked_output_file, fail
+from ocean_warp.envs.registration import DEFAULT_TASK
 from ocean_warp.envs.training.policy_io import CHECKPOINT_FORMAT, CheckpointError, Policy, load_policy
 
+from .policy_export_options import OUT_FOLDER, parser as _parser
 from .onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
 
 __all__ = ["FORMATS", "OPSET", "TOLERANCE", "TORCHSCRIPT_METADATA", "ExportError", "ActionDifference",
@@ -61,8 +63,6 @@ CHECK_OBSERVATIONS = 256
 """Random observations the export is checked on."""
 TORCHSCRIPT_METADATA = "ocean_warp_policy.json"
 """Name of the extra file inside an exported TorchScript archive that holds its metadata (a JSON object)."""
-DEFAULT_TASK = "EBoatMission-v0"
-"""The task whose shipped policy is exported when neither --policy nor --task is given."""
 
 SEED_LAYOUT = (
     "distance to the waypoint: 2 d / d_lost - 1, d_lost = the leg's length + the lost margin [m]; clipped to "
@@ -415,23 +415,6 @@ def read_torchscript_metadata(path: str | os.PathLike) -> dict[str, object]:
 EXPORTERS = {"onnx": export_onnx, "torchscript": export_torchscript}
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = job_parser("export-policy", __doc__, raw_description=True)
-    parser.add_argument("--policy", default=None, metavar="FILE",
-                        help="policy checkpoint (ocean_warp.policy/1) to export (default: the shipped policy of "
-                             "--task)")
-    parser.add_argument("--task", default=None, metavar="ID",
-                        help="a task id: without --policy, export its shipped policy; with --policy, the checkpoint "
-                             f"must be for this task (default: the checkpoint's task; {DEFAULT_TASK} without "
-                             "--policy)")
-    parser.add_argument("--format", default=None, metavar="FORMAT",
-                        help="onnx or torchscript (default: from --out's suffix, .onnx or .pt; onnx without --out)")
-    parser.add_argument("--out", default=None, metavar="FILE",
-                        help="the file to write, .onnx for onnx, .pt for torchscript (default: "
-                             "out/policies/<checkpoint name>.onnx, or .torchscript.pt)")
-    return parser
-
-
 def _export_format(parser: argparse.ArgumentParser, args: argparse.Namespace) -> str:
     """--format, checked against --out's suffix, or the format --out's suffix names."""
     check_options(parser, [("--format", args.format, args.format in (None, *FORMATS), "onnx or torchscript")])
@@ -469,15 +452,13 @@ def _is_torchscript_archive(path: str) -> bool:
 
 
 def _out_path(parser: argparse.ArgumentParser, args: argparse.Namespace, checkpoint: str, form: str) -> str:
-    """--out, or out/policies/<checkpoint name> with the format's suffix; its folder made."""
+    """--out, or OUT_FOLDER/<checkpoint name> with the format's suffix, checked before anything runs (the
+    folder is made when the file is written)."""
     out = args.out
     if out is None:
         stem = os.path.splitext(os.path.basename(checkpoint))[0]
-        out = os.path.join("out", "policies", stem + (".onnx" if form == "onnx" else ".torchscript.pt"))
-    if os.path.isdir(out):
-        fail(parser, f"--out {out}: is a folder, not a file")
-    made_folder(parser, os.path.dirname(os.path.abspath(out)), "--out")
-    return out
+        out = os.path.join(OUT_FOLDER, stem + (".onnx" if form == "onnx" else ".torchscript.pt"))
+    return checked_output_file(parser, out, "--out")
 
 
 def main(argv=None) -> int:
@@ -490,6 +471,7 @@ def main(argv=None) -> int:
     if form == "onnx" and importlib.util.find_spec("onnx") is None:
         fail(parser, f"--format onnx needs the onnx package: {INSTALL_HINT}")
     checkpoint = _checkpoint_path(parser, args)
+    out = _out_path(parser, args, checkpoint, form)
     if _is_torchscript_archive(checkpoint):
         fail(parser, f"--policy {checkpoint}: a TorchScript archive (an exported policy?), not a policy checkpoint "
                      f"({CHECKPOINT_FORMAT}); export from the checkpoint it came from")
@@ -497,7 +479,6 @@ def main(argv=None) -> int:
         policy = load_policy(checkpoint, task=args.task if args.policy is not None else None)
     except CheckpointError as error:
         fail(parser, str(error))
-    out = _out_path(parser, args, checkpoint, form)
     try:
         summary = EXPORTERS[form](policy, out, source=checkpoint)
     except ExportError as error:
