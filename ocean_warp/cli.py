@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .cli_support import COMMAND, RawDescriptionHelpFormatter
+from .cli_support import COMMAND, JobArgumentParser, RawDescriptionHelpFormatter
 
 JOBS = {
     "demo": ("ocean_warp.envs.apps.demo", "ocean_warp.envs.apps.demo_options",
@@ -54,7 +54,7 @@ def version() -> str:
 def _parser() -> argparse.ArgumentParser:
     width = max(len(name) for name in JOBS)
     jobs = "\n".join(f"  {name:<{width}}  {text}" for name, (_, _, text) in JOBS.items())
-    parser = argparse.ArgumentParser(
+    parser = JobArgumentParser(
         prog=COMMAND, formatter_class=RawDescriptionHelpFormatter,
         description="ocean_warp's jobs: `ocean-warp <job> [options]`; `ocean-warp <job> --help` gives a job's\n"
                     "options with their defaults and units, `ocean-warp <job> --help-long` what it does in detail.",

@@ -20,7 +20,7 @@ from typing import NoReturn
 
 from .devices import DEVICE_FORMS, resolve_device
 
-__all__ = ["COMMAND", "HelpFormatter", "RawDescriptionHelpFormatter", "job_parser", "error_text", "fail",
+__all__ = ["COMMAND", "HelpFormatter", "RawDescriptionHelpFormatter", "JobArgumentParser", "job_parser", "error_text", "fail",
            "report_error", "option_problem", "check_options", "finite_at_least",
            "finite_above", "add_device_argument", "checked_device", "made_folder", "checked_output_folder",
            "checked_output_file", "plain_text", "module_docstring", "plural"]
@@ -64,12 +64,20 @@ def job_parser(job: str, description: str, *, long_help_from: str | None = None,
     ``long_help_from``: the module whose docstring ``--help-long`` prints as plain text (read from its source,
     not imported: Warp and torch stay unloaded)."""
     epilog = EXAMPLES_HEADING + "".join(f"  {line}\n" for line in examples) if examples else None
-    parser = argparse.ArgumentParser(prog=f"{COMMAND} {job}", description=description, epilog=epilog,
-                                     formatter_class=HelpFormatter)
+    parser = JobArgumentParser(prog=f"{COMMAND} {job}", description=description, epilog=epilog,
+                               formatter_class=HelpFormatter)
     if long_help_from is not None:
         parser.add_argument("--help-long", action=_LongHelp, module=long_help_from,
                             help="show the long description (what the job does and writes, in detail) and exit")
     return parser
+
+
+class JobArgumentParser(argparse.ArgumentParser):
+    """argparse's parser whose errors (an unknown option, a value of the wrong type) are one line,
+    ``<prog>: error: <message>``, and exit status 2, without the usage lines."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, error_text(self.prog, message) + "\n")
 
 
 class _LongHelp(argparse.Action):

@@ -324,7 +324,6 @@ def main(argv: list[str] | None = None) -> int:
     1 when the run or the encoding fails)."""
     parser = _parser()
     args = parser.parse_args(argv)
-    checked_output_file(parser, args.out, "--out", VIDEO_SUFFIXES)
     try:
         config = RenderConfig(boats=args.boats, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                               hull=args.hull, frames_per_second=args.fps, duration=args.duration, width=args.width,
@@ -334,6 +333,7 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:  # a bad setting or task
         return report_error(parser.prog, str(error))
     device = checked_device(parser, args.device)
+    checked_output_file(parser, args.out, "--out", VIDEO_SUFFIXES)
     problem = None
     if args.out.lower().endswith(".mp4") and (config.width % 2 or config.height % 2):  # a value, before the setup
         problem = f"--width and --height must be even for MP4 (H.264 4:2:0), got {config.width} x {config.height}"

@@ -23,7 +23,7 @@ def parser() -> argparse.ArgumentParser:
     add_device_argument(parser)
     parser.add_argument("--boats-per-shape", type=int, default=8, metavar="N",
                         help=f"hulls of each shape, 1 to {MAX_BOATS_PER_SHAPE} (every hull's heave and roll are kept "
-                             "at every step, 16 bytes a step: 0.5 GB for the most over the default 40 s, and each "
+                             "at every step, 16 bytes a step: 0.5 GB for the most over 40 s, and each "
                              "hull is a line of the plot)")
     parser.add_argument("--seconds", type=float, default=40.0, help="simulated time [s]")
     return parser

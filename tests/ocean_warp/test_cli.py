@@ -90,13 +90,15 @@ BAD_VALUES = [
     (["polar", "--angle-step", "0"], "--angle-step must be in (0, 180] [deg], got 0.0"),
     (["polar", "--sheet-step", "91"], "--sheet-step must be in (0, 90] [deg], got 91.0"),
     (["polar", "--settle", "-1"], "--settle must be a number >= 0 [s]"),
-    (["drop-hulls", "--boats-per-shape", "0"], "--boats-per-shape must be a whole number >= 1, got 0"),
+    (["drop-hulls", "--boats-per-shape", "0"], "--boats-per-shape must be a whole number from 1 to 4096"),
+    (["drop-hulls", "--boats-per-shape", "1000000000"], "--boats-per-shape must be a whole number from 1 to 4096"),
     (["drop-hulls", "--seconds", "0"], "--seconds must be a number of seconds >= one step"),
     (["train", "--num-envs", "0"], "--num-envs must be a whole number >= 1, got 0"),
     (["train", "--iterations", "-2"], "--iterations must be a whole number >= 1, got -2"),
     (["eval", "--runs", "0"], "--runs must be a whole number >= 1, got 0"),
     (["render", "--width", "0"], "RenderConfig.width must be an integer in [2, 8192], got 0"),
-] + [([job, "--device", "tpu"], "--device must be \"cpu\", \"cuda\" (the first GPU) or \"cuda:N\", got 'tpu'")
+] + [([job, "--device", "tpu"], "--device must be \"auto\" (the first GPU where Warp sees one, else the CPU), "
+                                "\"cpu\", \"cuda\" (the first GPU) or \"cuda:N\", got 'tpu'")
      for job in ("ocean", "polar", "drop-hulls", "train", "eval", "demo", "render")] + [
     ([job, "--device", "cuda:99"], "--device 'cuda:99': ") for job in ("ocean", "polar", "drop-hulls", "train",
                                                                       "eval", "demo", "render")]
@@ -129,11 +131,11 @@ def test_cuda_without_a_gpu_is_a_one_line_error(job, capsys):
 
 def test_resolve_device():
     assert resolve_device("cpu") == "cpu"
-    assert resolve_device(None) == ("cuda:0" if HAS_GPU else "cpu")
+    assert resolve_device(None) == resolve_device("auto") == ("cuda:0" if HAS_GPU else "cpu")
     if HAS_GPU:
         assert resolve_device("cuda") == resolve_device(" cuda:0") == "cuda:0"
     for bad in ("gpu", "cuda:", "cuda:-1", "cuda:x", "CPU", ""):
-        with pytest.raises(ValueError, match=r'^device must be "cpu", "cuda" \(the first GPU\) or "cuda:N"'):
+        with pytest.raises(ValueError, match=r'^device must be "auto" \(.*\), "cpu", "cuda" \(the first GPU\) or "cuda:N"'):
             resolve_device(bad)
     with pytest.raises(ValueError, match=r"^--device 'cuda:99': "):
         resolve_device("cuda:99", name="--device")

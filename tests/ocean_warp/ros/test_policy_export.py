@@ -207,12 +207,12 @@ def test_the_job_writes_an_onnx_file(tmp_path, capsys):
 
 
 def test_the_job_writes_torchscript_by_default_path(tmp_path, capsys, monkeypatch):
-    """Without --out: out/policies/<checkpoint>.torchscript.pt; --policy with the matching --task."""
+    """Without --out: out/export-policy/<checkpoint>.torchscript.pt; --policy with the matching --task."""
     monkeypatch.chdir(tmp_path)
     source = shipped_policy_path("EBoatMission-v0")
     code, printed, errors = run_job(["--policy", source, "--task", "EBoatMission-v0", "--format", "torchscript"],
                                     capsys)
-    written = tmp_path / "out" / "policies" / "eboat_mission.torchscript.pt"
+    written = tmp_path / "out" / "export-policy" / "eboat_mission.torchscript.pt"
     assert code == 0 and errors == [] and len(printed) == 1 and written.is_file(), (printed, errors)
     assert read_torchscript_metadata(written)["task"] == "EBoatMission-v0"
 
