@@ -88,7 +88,8 @@ class _LongHelp(argparse.Action):
         self.module = module
 
     def __call__(self, parser, namespace, values, option_string=None):
-        parser.exit(0, plain_text(module_docstring(self.module)).rstrip() + "\n")
+        print(plain_text(module_docstring(self.module)).rstrip())  # on stdout, as --help
+        parser.exit(0)
 
 
 def module_docstring(name: str) -> str:

@@ -173,3 +173,38 @@ def test_an_unknown_task_is_a_one_line_error(job, tmp_path, capsys):
     error = capsys.readouterr().err.strip().splitlines()
     assert len(error) == 1 and "--task: unknown task id 'EBoatNowhere-v0'; known: EBoatWaypoint-v0" in error[0], error
     assert not out.exists()
+
+
+# --- demo --policy: a trained checkpoint sails the policy's share ------------------------------------
+
+def test_demo_sails_the_given_policy(tmp_path, capsys):
+    """--policy FILE: the policy's share of the boats sails that checkpoint. Its output layer always commands
+    propeller int(5 x 0) = 0, so its boats never use the motor, while the autopilot's boat is the autopilot's."""
+    from tests.envs.apps.test_evaluation import random_policy_file
+
+    policy = tmp_path / "policy.pt"
+    random_policy_file(policy, constant_actions=(0.0, 0.2, 0.1))
+    out = tmp_path / "demo"
+    cli.main(["demo", "--policy", str(policy), "--boats", "3", "--policy-share", "0.67", "--time-limit", "3",
+              "--no-usd", "--no-progress", "--device", "cpu", "--out", str(out)])
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[0] == f"policy {policy}: for EBoatMission-v0, observation 'seed' (5 values)", printed
+    runs = _rows(out / "runs.csv")
+    assert [row["controller"] for row in runs] == ["policy", "policy", "autopilot"]
+    assert [float(row["motor_use"]) for row in runs[:2]] == [0.0, 0.0]
+    assert all(row["own_tacks"] == "" for row in runs[:2]) and runs[2]["own_tacks"].isdigit()
+
+
+def test_demo_refuses_an_unusable_policy_before_sailing(tmp_path, capsys):
+    """Any file that is not a policy checkpoint: one line naming it, exit status 2, nothing written."""
+    from tests.envs.apps.test_evaluation import unusable_checkpoints
+
+    out = tmp_path / "demo"
+    for name, message in unusable_checkpoints(tmp_path).items():
+        with pytest.raises(SystemExit) as exit_info:
+            cli.main(["demo", "--policy", str(tmp_path / name), "--device", "cpu", "--out", str(out)])
+        assert exit_info.value.code == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith(f"ocean-warp demo: error: --policy: checkpoint "
+                                                   f"{str(tmp_path / name)!r}") and message in err[0], (name, err)
+    assert not out.exists()
