@@ -53,7 +53,7 @@ from ocean_warp.kernels.camera_render import follow_boat
 from ..decision_hook import DecisionHook
 from ..sailing_env import SailingEnv
 from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission
-from .render_options import CAMERAS, VIDEO_SUFFIXES, RenderConfig, parser as _parser
+from .render_options import CAMERAS, VIDEO_SUFFIXES, RenderConfig, parser as _parser  # noqa: F401 (re-exported)
 from .fleet_scenario import checked_task_name, controller_observation, shipped_policy_or_none
 from ..training.policy_io import load_policy
 
@@ -333,7 +333,7 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:  # a bad setting or task
         return report_error(parser.prog, str(error))
     device = checked_device(parser, args.device)
-    checked_output_file(parser, args.out, "--out", VIDEO_SUFFIXES)
+    checked_output_file(parser, args.out, "--out")  # its suffix: video_path_problem
     problem = None
     if args.out.lower().endswith(".mp4") and (config.width % 2 or config.height % 2):  # a value, before the setup
         problem = f"--width and --height must be even for MP4 (H.264 4:2:0), got {config.width} x {config.height}"

@@ -32,7 +32,7 @@ from ocean_warp.usd.stage_file import check_stage_path
 
 from ..sailing_env import SailingEnv
 from .fleet_scenario import scenario_arguments, shipped_policy_or_none
-from .usd_export_options import STAGE_SUFFIXES, ExportConfig, parser as _parser
+from .usd_export_options import ExportConfig, parser as _parser
 from .evaluation import AutopilotController, PolicyController, RecordedDecision
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
@@ -104,7 +104,7 @@ def main(argv: list[str] | None = None) -> int:
     out = args.out
     if args.usda and out.endswith(".usdc"):
         out = out[: -len(".usdc")] + ".usda"
-    checked_output_file(parser, out, "--out", STAGE_SUFFIXES)
+    checked_output_file(parser, out, "--out")  # its suffix: check_stage_path
     device = checked_device(parser, args.device)
     try:
         # Before anything is made: a stage's extension, a folder that can be made. The folder itself is made

@@ -13,10 +13,7 @@ from ocean_warp.validation import require_in_range, require_positive
 
 from .scenario_options import FleetScenario, add_scenario_arguments
 
-__all__ = ["CONTROLLERS", "STAGE_SUFFIXES", "ExportConfig", "parser"]
-
-STAGE_SUFFIXES = (".usdc", ".usda", ".usd")
-"""What a stage's file name ends in."""
+__all__ = ["CONTROLLERS", "ExportConfig", "parser"]
 CONTROLLERS = ("policy", "autopilot", "fixed")
 
 

@@ -66,7 +66,7 @@ def test_an_mp4_of_a_tiny_run_from_the_fixed_camera(tmp_path):
     (".", "is a folder"),
     ("fleet.avi", "--out must end in .mp4 or .gif"),
     ("fleet", "--out must end in .mp4 or .gif"),
-    ("a_file/inside/fleet.gif", "a_file/inside: Not a directory"),  # a folder that cannot be made
+    ("a_file/inside/fleet.gif", "a_file is a file, not a folder"),  # a folder that cannot be made
 ])
 def test_an_unusable_out_is_a_one_line_error(tmp_path, capsys, name, message):
     (tmp_path / "a_file").write_text("not a folder")
