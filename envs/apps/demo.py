@@ -194,6 +194,7 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:  # a bad setting or task
         return report_error(parser.prog, str(error))
     device = checked_device(parser, args.device)
+    print(f"{config.task_id}: {plural(config.boats, 'boat')}, device {device}")
     policy = None
     if config.policy is not None:
         try:

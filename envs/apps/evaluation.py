@@ -960,9 +960,9 @@ def main(argv=None) -> int:
                                time_limit=args.time_limit)
     except ValueError as error:
         fail(parser, str(error))
-    policy = None if args.no_policy else _policy_for(parser, args, name)
     print(f"{name} ({_course_text(task)}): {plural(args.runs, 'run')} per controller, "
           f"{_conditions_text(task, args.seed)}, device {device}")
+    policy = None if args.no_policy else _policy_for(parser, args, name)
     try:
         evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                                       device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,

@@ -131,7 +131,7 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     seconds = time.perf_counter() - started
     print(f"{plural(config.boats, 'boat')} x {config.duration:g} s of {config.task_id} ({config.controller}) "
-          f"recorded in {seconds:.1f} s")
+          f"recorded on {device} in {seconds:.1f} s")
     for name, path in files.items():
         print(f"wrote {path} ({name}, {os.path.getsize(path) / 2**20:.1f} MiB)")
     return 0
