@@ -213,8 +213,8 @@ def checked_output_file(parser: argparse.ArgumentParser, path: str, option: str 
     suffix not among ``suffixes`` (any where empty), a file in its folder's path or a folder that cannot be
     written in is :func:`fail` with one line naming ``option`` and ``path``. Nothing is made."""
     if os.path.isdir(path):
-        fail(parser, f"{option} {path}: is a folder; give a file name"
-                     + (f" ending in {' or '.join(suffixes)}" if suffixes else ""))
+        fail(parser, f"{option} {path}: is a folder, not a file"
+                     + (f"; give a name ending in {' or '.join(suffixes)}" if suffixes else ""))
     if suffixes and not path.lower().endswith(tuple(suffix.lower() for suffix in suffixes)):
         fail(parser, f"{option} {path}: must end in {' or '.join(suffixes)}")
     problem = _writable_problem(os.path.dirname(os.path.abspath(path)))
