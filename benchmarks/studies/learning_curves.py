@@ -1,6 +1,6 @@
 """Learning curves of training runs: mean return and success rate against wall time and against samples.
 
-    python -m benchmarks.studies.learning_curves runs/EBoatWaypoint-v0/<run> runs/EBoatWaypointPlus-v0/<run> \
+    python -m benchmarks.studies.learning_curves out/train/EBoatWaypoint-v0/<run> out/train/EBoatWaypointPlus-v0/<run> \
         --labels Waypoint Waypoint+ --out benchmarks/figures/learning_curves.png
 
 Each run folder holds the ``progress.csv`` that ``ocean-warp train`` writes (one row per PPO iteration:

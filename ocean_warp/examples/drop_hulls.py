@@ -1,6 +1,6 @@
 """Example: a few dozen hulls of different shapes dropped into a JONSWAP sea; heave and roll over time.
 
-    ocean-warp drop-hulls --out out/drop_hulls    # or: python -m ocean_warp.examples.drop_hulls ...
+    ocean-warp drop-hulls --out out/drop-hulls    # or: python -m ocean_warp.examples.drop_hulls ...
 
 Writes ``hull_motions.png`` (heave and roll of every boat, coloured by shape) and ``hull_motions.csv``.
 """
