@@ -2,6 +2,10 @@
 shipped policy and the rest with the classical autopilot, all in one batch; it writes the USD stage (with
 a preview PNG), the trajectory picture and the results table, and prints a summary.
 
+``--policy FILE`` sails a checkpoint of your own in the shipped policy's place: the ``policy.pt`` (or a
+``model_<it>.pt``) that ``ocean-warp train`` wrote into ``out/train/<task>/<date>_<name>/``. A file that is
+no policy checkpoint is one line and exit status 2, before anything sails.
+
 ``--task ID`` sails another registered task (as ``ocean-warp eval --task``): its shipped policy takes the
 policy's share of the boats, or, for a task without one, the autopilot sails every boat (said in one line).
 On a task with obstacles the stage shows each boat's buoys and piles of its first episode and the
