@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .termination import exit_cleanly_on_sigterm
+
 JOBS = {
     "demo": ("ocean_warp.envs.apps.demo", "a fleet sails the BCDACA mission in waves (policy and autopilot): USD stage, "
              "PNGs, table"),
@@ -27,6 +29,7 @@ JOBS = {
 
 def main(argv=None) -> None:
     argv = sys.argv[1:] if argv is None else list(argv)
+    exit_cleanly_on_sigterm(argv)
     parser = argparse.ArgumentParser(
         prog="ocean-warp", description="ocean_warp's jobs: `ocean-warp <job> [options]`; `ocean-warp <job> --help` "
         "gives a job's options with their defaults and units.")
