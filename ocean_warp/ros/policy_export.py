@@ -12,8 +12,8 @@ action to [-1, 1]). The observation normalisation, (x - mean) / (std + eps) with
 training, is inside the graph. The file carries its metadata (ONNX: ``metadata_props``; TorchScript: the
 extra file ``ocean_warp_policy.json``): task, observation set, num_obs, num_actions, what each
 observation value and each action is (JSON lists), the checkpoint format, and the checkpoint it came from.
-Before the file replaces anything at --out (atomically), onnxruntime (or torch.jit.load) runs it on 256
-random observations spread as in training and must reproduce the torch policy's actions to 1e-5: the
+Before the file replaces anything at --out (atomically), onnxruntime (without it, onnx's reference evaluator;
+for TorchScript, torch.jit.load) runs it on 256 random observations spread as in training and must reproduce the torch policy's actions to 1e-5: the
 actions clipped to [-1, 1], as the boat applies them, and the unclipped means up to 1, relative beyond.
 (Trained policies' unclipped means reach tens, and float32 resolves 40 to about 4e-6 only. Far outside the
 training spread, where hidden activations are large, float32 sums are good to some 2e-5 only: torch itself
@@ -150,21 +150,22 @@ class ExportSummary:
         format: "onnx" or "torchscript".
         metadata: the metadata stored in it (string to string).
         difference: the file's actions against the torch policy's on the check's observations; None where
-            it was not checked (no onnxruntime for an ONNX file, or ``check`` off).
+            it was not checked (``check`` off).
+        checker: what ran the file for the check: "onnxruntime", "onnx's reference evaluator" (ONNX without
+            onnxruntime) or "torch.jit.load"; "" where it was not checked.
     """
 
     path: str
     format: str
     metadata: dict[str, str]
     difference: ActionDifference | None
+    checker: str = ""
 
     def line(self) -> str:
         """The one-line summary ``ocean-warp export-policy`` prints."""
         meta = self.metadata
-        checker = "onnxruntime" if self.format == "onnx" else "torch.jit.load"
-        unchecked = f"not run (no onnxruntime: {INSTALL_HINT})" if self.format == "onnx" else "not checked"
-        check = unchecked if self.difference is None else (f"{checker} reproduces the torch policy to "
-                                                           f"{self.difference.text()}")
+        check = "not checked" if self.difference is None else (f"{self.checker} reproduces the torch policy to "
+                                                               f"{self.difference.text()}")
         kind = f"ONNX opset {OPSET}" if self.format == "onnx" else "TorchScript"
         return (f"wrote {self.path}: {kind}, the {meta['task']} policy (observation {meta['observation']!r}, "
                 f"{meta['num_obs']} values -> {meta['num_actions']} actions, normalisation "
@@ -337,7 +338,8 @@ def export_onnx(policy: Policy | str | os.PathLike, out: str | os.PathLike, *, s
         out: the ``.onnx`` file to write (its folder is made).
         source: the checkpoint a Policy given as ``policy`` was read from, named in the metadata (a path given
             as ``policy`` is its own source).
-        check: run the file with onnxruntime (where installed) before it replaces ``out``, and refuse it
+        check: run the file with onnxruntime (without it: onnx's reference evaluator, numpy's
+            implementation of every operator, independent of torch) before it replaces ``out``, and refuse it
             unless it reproduces the torch policy's actions to TOLERANCE.
 
     Raises:
@@ -354,11 +356,25 @@ def export_onnx(policy: Policy | str | os.PathLike, out: str | os.PathLike, *, s
     onnx.checker.check_model(model)
     with atomic_output(out, suffix=".onnx") as temporary:
         onnx.save_model(model, temporary)
-        difference = None
-        if check and importlib.util.find_spec("onnxruntime") is not None:
-            difference = _difference(policy, OnnxPolicy(temporary).act)
-        summary = _checked(ExportSummary(os.fspath(out), "onnx", metadata, difference))
+        difference, checker = None, ""
+        if check:
+            checker, run = _onnx_runner(temporary)
+            difference = _difference(policy, run)
+        summary = _checked(ExportSummary(os.fspath(out), "onnx", metadata, difference, checker))
     return summary
+
+
+def _onnx_runner(path: str):
+    """(name, run) for the check of the ONNX file at ``path``: onnxruntime, what the boat runs, where it
+    imports; else onnx's reference evaluator (slow, but these networks are small)."""
+    try:
+        import onnxruntime  # noqa: F401 - only whether it imports
+    except ImportError:
+        from onnx.reference import ReferenceEvaluator
+
+        evaluator = ReferenceEvaluator(path)
+        return "onnx's reference evaluator", lambda observations: evaluator.run(None, {INPUT_NAME: observations})[0]
+    return "onnxruntime", OnnxPolicy(path).act
 
 
 def export_torchscript(policy: Policy | str | os.PathLike, out: str | os.PathLike, *,
@@ -390,7 +406,7 @@ def export_torchscript(policy: Policy | str | os.PathLike, out: str | os.PathLik
         if check:
             loaded = torch.jit.load(temporary, map_location="cpu")
             difference = _difference(policy, lambda batch: loaded(torch.from_numpy(batch)).numpy())
-        summary = _checked(ExportSummary(os.fspath(out), "torchscript", metadata, difference))
+        summary = _checked(ExportSummary(os.fspath(out), "torchscript", metadata, difference, "torch.jit.load"))
     return summary
 
 
