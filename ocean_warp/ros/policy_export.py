@@ -13,8 +13,9 @@ training, is inside the graph. The file carries its metadata (ONNX: ``metadata_p
 extra file ``ocean_warp_policy.json``): task, observation set, num_obs, num_actions, what each
 observation value and each action is (JSON lists), the checkpoint format, and the checkpoint it came from.
 Before the file replaces anything at --out (atomically), onnxruntime (without it, onnx's reference evaluator;
-for TorchScript, torch.jit.load) runs it on 256 random observations spread as in training and must reproduce the torch policy's actions to 1e-5: the
-actions clipped to [-1, 1], as the boat applies them, and the unclipped means up to 1, relative beyond.
+for TorchScript, torch.jit.load) runs it on 256 random observations spread as in training and must reproduce
+the torch policy's actions to 1e-5: the actions clipped to [-1, 1], as the boat applies them, and the
+unclipped means up to 1, relative beyond.
 (Trained policies' unclipped means reach tens, and float32 resolves 40 to about 4e-6 only. Far outside the
 training spread, where hidden activations are large, float32 sums are good to some 2e-5 only: torch itself
 differs that much between a batch of 1 and one of 4000.)
