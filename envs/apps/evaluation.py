@@ -111,6 +111,8 @@ from ocean_warp.cli_support import (
 from ocean_warp.fleet import BoatStatus
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.kernels.ray_cast import float_objects
+from ocean_warp.ocean_config import (SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_significant_wave_height,
+                                    require_significant_wave_height)
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
@@ -841,9 +843,10 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     """
     if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
         raise ValueError(f"evaluate_mission: runs must be an integer >= 1, got {runs!r}")
-    for name, value in (("sea_state", sea_state), ("wind", wind)):
-        if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
-            raise ValueError(f"evaluate_mission: {name} must be a finite number >= 0 or None, got {value!r}")
+    if sea_state is not None:
+        require_significant_wave_height("evaluate_mission: sea_state", sea_state)
+    if wind is not None and not (isinstance(wind, (int, float)) and math.isfinite(wind) and wind >= 0.0):
+        raise ValueError(f"evaluate_mission: wind must be a finite number >= 0 or None, got {wind!r}")
     if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0.0):
         raise ValueError(f"evaluate_mission: time_limit must be > 0 [s] or None, got {time_limit!r}")
     if isinstance(policy, (str, os.PathLike)):
@@ -929,8 +932,8 @@ def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
     """Exit with status 2 and one line on option values that cannot work (alone or together)."""
     check_options(parser, (
         ("--runs", args.runs, args.runs >= 1, "a whole number >= 1"),
-        ("--sea-state", args.sea_state, args.sea_state is None or finite_at_least(args.sea_state, 0.0),
-         "a finite number >= 0 [m]"),
+        ("--sea-state", args.sea_state, args.sea_state is None or is_valid_significant_wave_height(args.sea_state),
+         SIGNIFICANT_WAVE_HEIGHT_RULE),
         ("--wind", args.wind, args.wind is None or finite_at_least(args.wind, 0.0), "a finite number >= 0 [m/s]"),
         ("--time-limit", args.time_limit, args.time_limit is None or finite_above(args.time_limit, 0.0),
          "a number > 0 [s]"),

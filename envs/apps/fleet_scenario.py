@@ -11,6 +11,7 @@ import warp as wp
 
 from ocean_warp.cli_support import add_device_argument
 from ocean_warp.eboat import Hydrostatics
+from ocean_warp.ocean_config import require_significant_wave_height
 from ocean_warp.validation import require_in_range, require_int_in_range
 
 from .evaluation import DEFAULT_TASK, evaluation_task
@@ -62,7 +63,7 @@ class FleetScenario:
         owner = type(self).__name__
         require_int_in_range(owner, "boats", self.boats, 1, 1_000_000)
         if self.sea_state is not None:
-            require_in_range(owner, "sea_state", self.sea_state, 0.0, 5.0)
+            require_significant_wave_height(f"{owner}.sea_state", self.sea_state)
         if self.wind is not None:
             require_in_range(owner, "wind", self.wind, 0.0, 30.0)
         require_int_in_range(owner, "seed", self.seed, 0, 2**31 - 1)
