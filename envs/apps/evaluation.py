@@ -122,8 +122,9 @@ from ..decision_hook import DecisionHook
 from ..sailing_env import SailingEnv
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
-from ..training.policy_io import CheckpointError, Policy, load_policy
+from ..training.policy_io import CheckpointError, Policy, load_policy, other_task_note
 from ..registration import TASK_IDS, make_task_config, task_name
+from ..tasks.task_kernels import POLICY_OBS
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
 __all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
@@ -155,6 +156,26 @@ class Controller(Protocol):
     def act(self, env: BatchedEnv) -> None: ...
 
 
+def observation_text(observation: str, num_obs: int) -> str:
+    """An observation in words: "5 values (the 'seed' set)", "29 values (the 'seed' set's 5 and 24 lidar
+    sectors)": the set's values, then what a task appends (its lidar's sectors: ``SailingEnv``)."""
+    base = POLICY_OBS.get(str(observation))
+    if base is None or num_obs == base:
+        return f"{num_obs} values (the {observation!r} set)"
+    return f"{num_obs} values (the {observation!r} set's {base} and {num_obs - base} lidar sectors)"
+
+
+def observation_mismatch(policy: Policy, observation, num_obs: int) -> str | None:
+    """None where ``policy`` reads what a task gives (its observation set ``observation`` of ``num_obs``
+    values in all); else both, in words, and what to do."""
+    given = ObservationSet(observation).value
+    if policy.observation == given and policy.num_obs == num_obs:
+        return None
+    return (f"the policy (trained on {policy.task}) reads {observation_text(policy.observation, policy.num_obs)}, "
+            f"the task gives {observation_text(given, num_obs)}: sail it on {policy.task}, or pass a policy "
+            "trained for this task")
+
+
 class PolicyController:
     """A trained :class:`~ocean_warp.envs.training.policy_io.Policy`: actions = policy(env.buffers.policy_obs)."""
 
@@ -165,11 +186,9 @@ class PolicyController:
         self.name = name
 
     def reset(self, env: BatchedEnv) -> None:
-        wanted, given = ObservationSet(self.policy.observation), ObservationSet(env.task.observation)
-        if given is not wanted or env.num_policy_obs != self.policy.num_obs:
-            raise ValueError(f"PolicyController: the policy reads the {wanted.value!r} observation "
-                             f"({self.policy.num_obs} values), the environment gives {given.value!r} "
-                             f"({env.num_policy_obs}); build the task with observation={wanted.value!r}")
+        problem = observation_mismatch(self.policy, env.task.observation, env.num_policy_obs)
+        if problem is not None:
+            raise ValueError(f"PolicyController: {problem}")
         self.policy.to(env.torch_device).eval()
 
     def act(self, env: BatchedEnv) -> None:
@@ -975,7 +994,16 @@ def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name:
         hint = "; --no-policy sails the autopilot alone" if args.policy is None else ""
         fail(parser, f"{error}{hint}")
     print(f"policy {path}: for {policy.task}, observation {policy.observation!r} ({policy.num_obs} values)")
+    warn_other_task(parser.prog, policy, name)
     return policy
+
+
+def warn_other_task(prog: str, policy: Policy, task: str) -> None:
+    """One line on stderr, ``<prog>: warning: ...``, where ``policy`` was trained on another task than
+    ``task``."""
+    note = other_task_note(policy, task)
+    if note is not None:
+        print(f"{prog}: warning: {note}", file=sys.stderr)
 
 
 def main(argv=None) -> int:

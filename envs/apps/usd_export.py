@@ -20,6 +20,7 @@ task without a shipped policy (and without ``--policy``) says so in one line and
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import os
 import sys
@@ -36,7 +37,7 @@ from ocean_warp.validation import require_in_range, require_positive
 
 from ..sailing_env import SailingEnv
 from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments, shipped_policy_or_none
-from .evaluation import AutopilotController, PolicyController, RecordedDecision
+from .evaluation import AutopilotController, PolicyController, RecordedDecision, warn_other_task
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
 
@@ -202,6 +203,9 @@ def main(argv: list[str] | None = None) -> int:
             config = dataclasses.replace(config, controller="autopilot")
     except (ValueError, OSError) as error:  # a bad setting or task; an unknown device; an unusable --out
         return report_error(PROG, str(error))
+    if config.controller == "policy" and config.policy is not None:
+        with contextlib.suppress(CheckpointError):  # an unusable file is reported by the export
+            warn_other_task(PROG, load_policy(config.policy), config.task_id)
     started = time.perf_counter()
     try:
         files = export_scenario(config, out, device=device, ascii=True if args.usda else None,

@@ -35,14 +35,14 @@ import logging
 import os
 import sys
 import warnings
-import zipfile
 
 import numpy as np
 import torch
 
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.cli_support import check_options, fail, job_parser, made_folder
-from ocean_warp.envs.training.policy_io import CHECKPOINT_FORMAT, CheckpointError, Policy, load_policy
+from ocean_warp.envs.training.policy_io import (CHECKPOINT_FORMAT, CheckpointError, Policy, is_torchscript_archive,
+                                               load_policy)
 
 from .onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
 
@@ -475,16 +475,6 @@ def _checkpoint_path(parser: argparse.ArgumentParser, args: argparse.Namespace) 
         fail(parser, f"--task: {error}")
 
 
-def _is_torchscript_archive(path: str) -> bool:
-    """Whether ``path`` is a TorchScript archive (a zip holding code/ and constants.pkl), which torch.load would
-    refuse with a warning and a misleading error."""
-    try:
-        with zipfile.ZipFile(path) as archive:
-            return any(name.endswith("/constants.pkl") for name in archive.namelist())
-    except (OSError, zipfile.BadZipFile):
-        return False
-
-
 def _out_path(parser: argparse.ArgumentParser, args: argparse.Namespace, checkpoint: str, form: str) -> str:
     """--out, or out/policies/<checkpoint name> with the format's suffix; its folder made."""
     out = args.out
@@ -507,7 +497,7 @@ def main(argv=None) -> int:
     if form == "onnx" and importlib.util.find_spec("onnx") is None:
         fail(parser, f"--format onnx needs the onnx package: {INSTALL_HINT}")
     checkpoint = _checkpoint_path(parser, args)
-    if _is_torchscript_archive(checkpoint):
+    if is_torchscript_archive(checkpoint):
         fail(parser, f"--policy {checkpoint}: a TorchScript archive (an exported policy?), not a policy checkpoint "
                      f"({CHECKPOINT_FORMAT}); export from the checkpoint it came from")
     try:
