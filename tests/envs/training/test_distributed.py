@@ -191,6 +191,33 @@ def test_ctrl_c_is_passed_to_torchrun_and_raised_once_it_has_exited(tmp_path):
     assert caught.read_text() == "SIGINT " and time.monotonic() - started < 30.0
 
 
+def test_launch_passes_sigterm_on_to_torchrun(tmp_path):
+    """SIGTERM to ``ocean-warp train --gpus G`` (the handler ocean-warp installs) reaches torchrun as SIGTERM,
+    and the launcher ends with Terminated (status 143) once it has exited."""
+    from ocean_warp.termination import Terminated, exit_cleanly_on_sigterm
+
+    ready, caught = tmp_path / "ready", tmp_path / "caught"
+    child = (f"import signal, sys, time\n"
+             f"signal.signal(signal.SIGTERM, lambda *_: (open({str(caught)!r}, 'a').write('SIGTERM '), sys.exit(3)))\n"
+             f"open({str(ready)!r}, 'w').close()\n"
+             f"time.sleep(600)\n")
+
+    def terminate_when_ready() -> None:
+        while not ready.exists():
+            time.sleep(0.02)
+        os.kill(os.getpid(), signal.SIGTERM)
+
+    previous = signal.getsignal(signal.SIGTERM)
+    try:
+        exit_cleanly_on_sigterm(["train"])
+        threading.Thread(target=terminate_when_ready, daemon=True).start()
+        with pytest.raises(Terminated) as raised:
+            launch([sys.executable, "-c", child], 2)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert raised.value.code == 143 and caught.read_text() == "SIGTERM "
+
+
 # --- two CPU ranks (gloo) ----------------------------------------------------------------------------------
 
 def _tagged(tag: str) -> list[int]:
