@@ -9,6 +9,7 @@ import csv
 import dataclasses
 import datetime
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -423,7 +424,9 @@ def unusable_checkpoints(folder) -> dict[str, str]:
     torch.save({"format": "ocean_warp.policy/1", "when": datetime.date(2026, 11, 23)}, folder / "code.pt")
     torch.save({"weights": torch.zeros(3)}, folder / "foreign.pt")
     (folder / "a_folder.pt").mkdir()
-    torch.jit.save(torch.jit.script(torch.nn.Linear(5, 3)), str(folder / "scripted.pt"))
+    with warnings.catch_warnings():  # torch.jit is deprecated, yet it is what export-policy writes for libtorch
+        warnings.simplefilter("ignore", DeprecationWarning)
+        torch.jit.save(torch.jit.script(torch.nn.Linear(5, 3)), str(folder / "scripted.pt"))
     not_ours = "is not an ocean_warp policy checkpoint"
     return {"notes.txt": f"{not_ours}: not a file written by torch.save",
             "random.pt": f"{not_ours}: not a file written by torch.save",
