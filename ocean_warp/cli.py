@@ -11,6 +11,7 @@ import argparse
 import sys
 
 from .cli_support import COMMAND, JobArgumentParser, RawDescriptionHelpFormatter
+from .termination import exit_cleanly_on_sigterm
 
 JOBS = {
     "demo": ("ocean_warp.envs.apps.demo", "ocean_warp.envs.apps.demo_options",
@@ -87,6 +88,7 @@ def main(argv=None) -> None:
     status 130."""
     argv = sys.argv[1:] if argv is None else list(argv)
     job = argv[0] if argv and argv[0] in JOBS else None
+    exit_cleanly_on_sigterm(argv)
     try:
         code = _run(argv)
     except KeyboardInterrupt:

@@ -9,6 +9,8 @@ import warnings
 import numpy as np
 import trimesh
 
+from .mesh_files import read_mesh_file
+
 __all__ = ["Hull", "HullRepairWarning"]
 
 # A hull longer than this is taken for a model in millimetres (or centimetres) and refused.
@@ -71,14 +73,10 @@ class Hull:
 
     @classmethod
     def from_file(cls, path: str | os.PathLike, *, scale: float = 1.0, name: str | None = None) -> "Hull":
-        """Load OBJ, STL, PLY, GLB/GLTF (anything trimesh reads), multiplied by ``scale``."""
+        """Load OBJ, STL, PLY, OFF, GLB or GLTF, multiplied by ``scale``; a folder, another format, a file
+        that does not parse and NaN or infinite vertices are refused (``ocean_warp.mesh_files``)."""
         path = os.fspath(path)
-        if not os.path.isfile(path):
-            raise FileNotFoundError(f"Hull.from_file: no such file: {path}")
-        try:
-            loaded = trimesh.load(path, force="mesh")
-        except Exception as error:  # trimesh raises many types for unreadable files
-            raise ValueError(f"Hull.from_file: cannot read {path} as a mesh: {error}") from error
+        loaded = read_mesh_file("Hull.from_file", path)
         return cls.from_trimesh(loaded, name=name or os.path.splitext(os.path.basename(path))[0], scale=scale)
 
     @classmethod

@@ -23,8 +23,8 @@ from .kernels.ocean_spectrum import (
 from .kernels.field_slots import advance_cursor, copy_slot_fields
 from .kernels.ocean_surface import OceanSurface, sample_surface_kernel
 from . import spectra
-from .ocean_config import OceanConfig, Spectrum
-from .wave_grid import RegularWave, build_wave_grid
+from .ocean_config import OceanConfig, Spectrum, require_significant_wave_height
+from .wave_grid import CELL_LAYOUT, RegularWave, build_wave_grid
 
 __all__ = ["Ocean", "FftPlan", "SurfaceSample"]
 
@@ -56,6 +56,21 @@ class SurfaceSample(NamedTuple):
     """(M, 3) water velocity at the surface [m/s] (linear orbital velocity)."""
     grid_position: np.ndarray
     """(M, 2) the undisplaced grid position [m] whose choppy displacement lands on the point."""
+
+CELL_OMEGA = CELL_LAYOUT.index("omega")
+"""Where a spectrum cell holds its wave's angular frequency [rad/s]."""
+
+
+def exact_time_limit(max_omega: float) -> float:
+    """The largest |t| [s] at which the phase omega t [rad] of the fastest wave, ``max_omega`` [rad/s], is
+    still exact to the float32 the fields are computed in. ``evolve_amplitude`` reduces omega t to [0, 2 pi)
+    in float64, with a rounding error up to omega |t| eps64 [rad]; the float32 phase near 2 pi is spaced
+    2^-21 rad. The error stays below that spacing while |t| <= spacing / (eps64 omega) = 2^31 / omega:
+    about ten years for a grid whose fastest wave has 6.6 rad/s. Infinite for a sea without waves."""
+    if max_omega <= 0.0:
+        return math.inf
+    spacing = float(np.spacing(np.float32(2.0 * math.pi)))
+    return spacing / (float(np.finfo(np.float64).eps) * max_omega)
 
 
 class Ocean:
@@ -108,6 +123,9 @@ class Ocean:
         self.surface.inversion_iterations = self.config.inversion_iterations if choppy else 0
         self.surface.inversion_tolerance_sq = self.config.inversion_tolerance**2
 
+        self.time_limit = exact_time_limit(float(np.max(self._base_cells[..., CELL_OMEGA])))
+        """Largest |t| [s] :meth:`update` accepts: beyond it the float64 phase omega t of the grid's fastest
+        wave is no longer exact to the float32 the fields are computed in (:func:`exact_time_limit`)."""
         self._loop_period = wp.float64(self.config.loop_period or 0.0)
         self._along_y = spectra_along_y_kernel(n)
         self._along_x = fields_along_x_kernel(n)
@@ -137,6 +155,9 @@ class Ocean:
         if t is not None:
             if isinstance(t, bool) or not isinstance(t, (int, float, np.floating, np.integer)) or not math.isfinite(t):
                 raise ValueError(f"Ocean.update: t must be a finite time in seconds, got {t!r}")
+            if abs(t) > self.time_limit:
+                raise ValueError(f"Ocean.update: t must be within +-{self.time_limit:.4g} s (beyond it the phase of "
+                                 "the grid's fastest wave is no longer exact in float32), got {t!r}")
             self.time.fill_(float(t))
             clock = None
         n = self.config.resolution
@@ -191,8 +212,8 @@ class Ocean:
         return config.significant_wave_height
 
     def set_significant_wave_height(self, hs: float) -> None:
-        """Change the sea state to a significant wave height of ``hs`` [m] (finite, >= 0; 0 gives a flat
-        sea), keeping its shape: the same spectrum shape, peak period, directions and phases, with every
+        """Change the sea state to a significant wave height of ``hs`` [m] (0 to
+        ``MAX_SIGNIFICANT_WAVE_HEIGHT``; 0 gives a flat sea), keeping its shape: the same spectrum shape, peak period, directions and phases, with every
         complex amplitude times ``hs / Hs0``, Hs0 the config's spectral Hs (see
         :attr:`spectrum_significant_wave_height`). So every field is exactly that multiple of the
         config's sea at the same time, and ``hs`` means what ``OceanConfig.significant_wave_height``
@@ -209,9 +230,7 @@ class Ocean:
         waves (Hs 0: there is no spectrum to scale; build it with the largest Hs you will use and
         scale down)."""
         owner = "Ocean.set_significant_wave_height"
-        if isinstance(hs, bool) or not isinstance(hs, (int, float, np.floating, np.integer)) or not math.isfinite(hs) \
-                or hs < 0.0:
-            raise ValueError(f"{owner}: hs must be a finite number >= 0 [m], got {hs!r}")
+        hs = require_significant_wave_height(f"{owner}: hs", hs)
         if self.config.spectrum is Spectrum.REGULAR:
             raise ValueError(f"{owner}: a \"regular\" ocean is one wave of OceanConfig.amplitude, not a spectrum "
                              "with a significant wave height; build an Ocean with another amplitude instead")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
+import numbers
 
 from .water_config import WaterConfig
 from .validation import (
@@ -15,12 +16,38 @@ from .validation import (
     require_positive,
 )
 
-__all__ = ["Spectrum", "OceanConfig", "MIN_RESOLUTION", "MAX_RESOLUTION"]
+__all__ = ["Spectrum", "OceanConfig", "MIN_RESOLUTION", "MAX_RESOLUTION", "MAX_SIGNIFICANT_WAVE_HEIGHT",
+           "SIGNIFICANT_WAVE_HEIGHT_RULE", "is_valid_significant_wave_height", "require_significant_wave_height"]
 
 MIN_RESOLUTION = 16
 """Smallest grid the tiled FFT runs (points per side)."""
 MAX_RESOLUTION = 2048
 """Largest grid the tiled FFT runs (points per side): one block holds a whole row."""
+
+MAX_SIGNIFICANT_WAVE_HEIGHT = 5.0
+"""The highest significant wave height [m] of any sea here: every config, job option and
+``Ocean.set_significant_wave_height`` checks against it. The models are for a small craft in seas it can
+sail: linear (Airy) waves that never break, Froude-Krylov pressure with no green water, calm-water
+resistance and foil fits, a 2.5 m boat whose tasks use Hs 0.3-0.5 m. At Hs 5 m (the WMO's "very rough"
+sea, waves twice the boat's length high) they are already far outside what they were made for; beyond it
+their numbers mean nothing."""
+SIGNIFICANT_WAVE_HEIGHT_RULE = (f"a number from 0 to {MAX_SIGNIFICANT_WAVE_HEIGHT:g} [m] (the wave and boat "
+                                "models hold for seas a small craft sails)")
+"""The rule in words, for error messages: "<field> must be <rule>, got <value>"."""
+
+
+def is_valid_significant_wave_height(value) -> bool:
+    """Whether ``value`` is a finite number from 0 to :data:`MAX_SIGNIFICANT_WAVE_HEIGHT` [m]."""
+    return (not isinstance(value, bool) and isinstance(value, numbers.Real) and math.isfinite(value)
+            and 0.0 <= value <= MAX_SIGNIFICANT_WAVE_HEIGHT)
+
+
+def require_significant_wave_height(name: str, value) -> float:
+    """``value`` as a float, or ValueError naming it (``name``: "OceanConfig.significant_wave_height", ...),
+    the value and the rule."""
+    if not is_valid_significant_wave_height(value):
+        raise ValueError(f"{name} must be {SIGNIFICANT_WAVE_HEIGHT_RULE}, got {value!r}")
+    return float(value)
 
 
 class Spectrum(str, enum.Enum):
@@ -49,7 +76,8 @@ class OceanConfig:
     spectrum: Spectrum | str = Spectrum.JONSWAP
     """"jonswap", "pierson_moskowitz" or "regular"."""
     significant_wave_height: float = 1.0
-    """Hs [m] of "jonswap", and of "pierson_moskowitz" when ``wind_speed`` is None."""
+    """Hs [m] of "jonswap", and of "pierson_moskowitz" when ``wind_speed`` is None: 0 to
+    ``MAX_SIGNIFICANT_WAVE_HEIGHT`` (5 m)."""
     peak_period: float = 6.0
     """Tp [s] of "jonswap", and of "pierson_moskowitz" when ``wind_speed`` is None."""
     gamma: float = 3.3
@@ -110,10 +138,8 @@ class OceanConfig:
             )
         set_field("resolution", resolution)
         set_field("spectrum", require_choice(owner, "spectrum", self.spectrum, Spectrum))
-        set_field(
-            "significant_wave_height",
-            require_non_negative(owner, "significant_wave_height", self.significant_wave_height, unit=" [m]"),
-        )
+        set_field("significant_wave_height",
+                  require_significant_wave_height(f"{owner}.significant_wave_height", self.significant_wave_height))
         set_field("peak_period", require_positive(owner, "peak_period", self.peak_period, unit=" [s]"))
         gamma = require_finite(owner, "gamma", self.gamma)
         if not 1.0 <= gamma <= 10.0:

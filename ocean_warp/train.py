@@ -26,6 +26,9 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
+    from ocean_warp.termination import exit_cleanly_on_sigterm
+
+    exit_cleanly_on_sigterm(["train"])  # each rank: SIGTERM (torchrun passes it on) saves and exits 143
     try:
         status = main()
     except KeyboardInterrupt:

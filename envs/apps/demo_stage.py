@@ -28,6 +28,7 @@ import numpy as np
 from ocean_warp.perception.scene import SceneObject
 from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, render_preview,
                             validate_stage)
+from ocean_warp.usd.preview import spread_time_code
 
 from ..sailing_env import SailingEnv
 from ..tasks.obstacle_course import OBSTACLE_BUOY, OBSTACLE_PILE
@@ -150,7 +151,8 @@ class MissionStageRecorder:
         files = {"stage": stage}
         if self.recorder.loop_path is not None:
             files["ocean loop"] = self.recorder.loop_path
-        files["preview"] = render_preview(stage)
+        # The first frame would show the fleet in a heap at its start: draw the one where it is most spread.
+        files["preview"] = render_preview(stage, time_code=spread_time_code(stage))
         return files
 
 

@@ -110,6 +110,8 @@ from ocean_warp.cli_support import (
 from ocean_warp.fleet import BoatStatus
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.kernels.ray_cast import float_objects
+from ocean_warp.ocean_config import (SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_significant_wave_height,
+                                    require_significant_wave_height)
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
@@ -120,8 +122,9 @@ from ..sailing_env import SailingEnv
 from . import evaluation_options
 from .mission_metrics import cross_track_spread, motor_use, path_length, wind_crossings
 from .mission_plot import PanelData, plot_trajectories
-from ..training.policy_io import CheckpointError, Policy, load_policy
+from ..training.policy_io import CheckpointError, Policy, load_policy, other_task_note
 from ..registration import DEFAULT_TASK, make_task_config, task_name
+from ..tasks.task_kernels import POLICY_OBS
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
 __all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
@@ -151,6 +154,26 @@ class Controller(Protocol):
     def act(self, env: BatchedEnv) -> None: ...
 
 
+def observation_text(observation: str, num_obs: int) -> str:
+    """An observation in words: "5 values (the 'seed' set)", "29 values (the 'seed' set's 5 and 24 lidar
+    sectors)": the set's values, then what a task appends (its lidar's sectors: ``SailingEnv``)."""
+    base = POLICY_OBS.get(str(observation))
+    if base is None or num_obs == base:
+        return f"{num_obs} values (the {observation!r} set)"
+    return f"{num_obs} values (the {observation!r} set's {base} and {num_obs - base} lidar sectors)"
+
+
+def observation_mismatch(policy: Policy, observation, num_obs: int) -> str | None:
+    """None where ``policy`` reads what a task gives (its observation set ``observation`` of ``num_obs``
+    values in all); else both, in words, and what to do."""
+    given = ObservationSet(observation).value
+    if policy.observation == given and policy.num_obs == num_obs:
+        return None
+    return (f"the policy (trained on {policy.task}) reads {observation_text(policy.observation, policy.num_obs)}, "
+            f"the task gives {observation_text(given, num_obs)}: sail it on {policy.task}, or pass a policy "
+            "trained for this task")
+
+
 class PolicyController:
     """A trained :class:`~ocean_warp.envs.training.policy_io.Policy`: actions = policy(env.buffers.policy_obs)."""
 
@@ -161,11 +184,9 @@ class PolicyController:
         self.name = name
 
     def reset(self, env: BatchedEnv) -> None:
-        wanted, given = ObservationSet(self.policy.observation), ObservationSet(env.task.observation)
-        if given is not wanted or env.num_policy_obs != self.policy.num_obs:
-            raise ValueError(f"PolicyController: the policy reads the {wanted.value!r} observation "
-                             f"({self.policy.num_obs} values), the environment gives {given.value!r} "
-                             f"({env.num_policy_obs}); build the task with observation={wanted.value!r}")
+        problem = observation_mismatch(self.policy, env.task.observation, env.num_policy_obs)
+        if problem is not None:
+            raise ValueError(f"PolicyController: {problem}")
         self.policy.to(env.torch_device).eval()
 
     def act(self, env: BatchedEnv) -> None:
@@ -839,9 +860,10 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     """
     if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
         raise ValueError(f"evaluate_mission: runs must be an integer >= 1, got {runs!r}")
-    for name, value in (("sea_state", sea_state), ("wind", wind)):
-        if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
-            raise ValueError(f"evaluate_mission: {name} must be a finite number >= 0 or None, got {value!r}")
+    if sea_state is not None:
+        require_significant_wave_height("evaluate_mission: sea_state", sea_state)
+    if wind is not None and not (isinstance(wind, (int, float)) and math.isfinite(wind) and wind >= 0.0):
+        raise ValueError(f"evaluate_mission: wind must be a finite number >= 0 or None, got {wind!r}")
     if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0.0):
         raise ValueError(f"evaluate_mission: time_limit must be > 0 [s] or None, got {time_limit!r}")
     if isinstance(policy, (str, os.PathLike)):
@@ -896,8 +918,8 @@ def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
     """Exit with status 2 and one line on option values that cannot work (alone or together)."""
     check_options(parser, (
         ("--runs", args.runs, args.runs >= 1, "a whole number >= 1"),
-        ("--sea-state", args.sea_state, args.sea_state is None or finite_at_least(args.sea_state, 0.0),
-         "a finite number >= 0 [m]"),
+        ("--sea-state", args.sea_state, args.sea_state is None or is_valid_significant_wave_height(args.sea_state),
+         SIGNIFICANT_WAVE_HEIGHT_RULE),
         ("--wind", args.wind, args.wind is None or finite_at_least(args.wind, 0.0), "a finite number >= 0 [m/s]"),
         ("--time-limit", args.time_limit, args.time_limit is None or finite_above(args.time_limit, 0.0),
          "a number > 0 [s]"),
@@ -939,7 +961,16 @@ def _policy_for(parser: argparse.ArgumentParser, args: argparse.Namespace, name:
         hint = "; --no-policy sails the autopilot alone" if args.policy is None else ""
         fail(parser, f"{error}{hint}")
     print(f"policy {path}: for {policy.task}, observation {policy.observation!r} ({policy.num_obs} values)")
+    warn_other_task(parser.prog, policy, name)
     return policy
+
+
+def warn_other_task(prog: str, policy: Policy, task: str) -> None:
+    """One line on stderr, ``<prog>: warning: ...``, where ``policy`` was trained on another task than
+    ``task``."""
+    note = other_task_note(policy, task)
+    if note is not None:
+        print(f"{prog}: warning: {note}", file=sys.stderr)
 
 
 def main(argv=None) -> int:

@@ -52,7 +52,7 @@ from ocean_warp.kernels.camera_render import follow_boat
 
 from ..decision_hook import DecisionHook
 from ..sailing_env import SailingEnv
-from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission
+from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission, warn_other_task
 from .render_options import CAMERAS, VIDEO_SUFFIXES, RenderConfig, parser as _parser  # noqa: F401 (re-exported)
 from .fleet_scenario import checked_task_name, controller_observation, shipped_policy_or_none
 from ..training.policy_io import load_policy
@@ -344,6 +344,8 @@ def main(argv: list[str] | None = None) -> int:
         controller = fleet_controller(config, config.boats)
     except (ValueError, FileNotFoundError) as error:  # an unusable policy checkpoint, or none shipped
         return report_error(parser.prog, str(error))
+    if isinstance(controller, PolicyController):  # --policy
+        warn_other_task(parser.prog, controller.policy, config.task_id)
     if config.policy is None and not config.autopilot and config.policy_share > 0.0 \
             and shipped_policy_or_none(config.task_id) is None:
         print(f"no policy is shipped for {config.task_id}: the autopilot sails every boat")

@@ -9,6 +9,7 @@ import dataclasses
 import pathlib
 
 from ocean_warp.cli_support import add_device_argument
+from ocean_warp.ocean_config import require_significant_wave_height
 from ocean_warp.validation import require_in_range, require_int_in_range
 
 from ..registration import DEFAULT_TASK, TASK_IDS, task_name
@@ -59,7 +60,7 @@ class FleetScenario:
         owner = type(self).__name__
         require_int_in_range(owner, "boats", self.boats, 1, 1_000_000)
         if self.sea_state is not None:
-            require_in_range(owner, "sea_state", self.sea_state, 0.0, 5.0)
+            require_significant_wave_height(f"{owner}.sea_state", self.sea_state)
         if self.wind is not None:
             require_in_range(owner, "wind", self.wind, 0.0, 30.0)
         require_int_in_range(owner, "seed", self.seed, 0, 2**31 - 1)

@@ -19,7 +19,7 @@ import torch
 
 from ..sailing_env import SailingEnv
 from ..training.policy_io import Policy
-from ..tasks.task_configs import ObservationSet
+from .evaluation import observation_mismatch
 
 
 @dataclass(frozen=True)
@@ -59,11 +59,10 @@ def evaluate_task(policy: Policy, task, *, episodes: int = 256, seed: int = 1000
     """
     if episodes < 1:
         raise ValueError(f"episodes must be at least 1, got {episodes}")
-    wanted, given = ObservationSet(policy.observation), ObservationSet(task.observation)
-    if wanted is not given:
-        raise ValueError(f"evaluate_task: the policy reads the {wanted.value!r} observation, the task gives "
-                         f"{given.value!r}")
     env = SailingEnv(task, episodes, device=device, seed=seed)
+    problem = observation_mismatch(policy, task.observation, env.num_policy_obs)
+    if problem is not None:
+        raise ValueError(f"evaluate_task: {problem}")
     policy = policy.to(env.buffers.policy_obs.device)
     b = env.buffers
     ended = torch.zeros(episodes, dtype=torch.bool, device=b.done.device)

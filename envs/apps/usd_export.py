@@ -19,6 +19,7 @@ task without a shipped policy (and without ``--policy``) says so in one line and
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import os
 import sys
@@ -33,7 +34,7 @@ from ocean_warp.usd.stage_file import check_stage_path
 from ..sailing_env import SailingEnv
 from .fleet_scenario import scenario_arguments, shipped_policy_or_none
 from .usd_export_options import ExportConfig, parser as _parser
-from .evaluation import AutopilotController, PolicyController, RecordedDecision
+from .evaluation import AutopilotController, PolicyController, RecordedDecision, warn_other_task
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
 
@@ -120,6 +121,9 @@ def main(argv: list[str] | None = None) -> int:
             config = dataclasses.replace(config, controller="autopilot")
     except (ValueError, OSError) as error:  # a bad setting or task; an unusable --out
         return report_error(parser.prog, str(error))
+    if config.controller == "policy" and config.policy is not None:
+        with contextlib.suppress(CheckpointError):  # an unusable file is reported by the export
+            warn_other_task(parser.prog, load_policy(config.policy), config.task_id)
     started = time.perf_counter()
     try:
         files = export_scenario(config, out, device=device, ascii=True if args.usda else None,

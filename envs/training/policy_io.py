@@ -20,6 +20,7 @@ from __future__ import annotations
 import os
 import pickle
 import re
+import zipfile
 from collections.abc import Mapping
 from typing import Any
 
@@ -29,7 +30,7 @@ from tensordict import TensorDict
 from ocean_warp.atomic_files import atomic_output
 
 __all__ = ["CHECKPOINT_FORMAT", "CheckpointError", "Policy", "save_checkpoint", "read_checkpoint", "load_policy",
-           "export_policy"]
+           "export_policy", "is_torchscript_archive", "other_task_note"]
 
 CHECKPOINT_FORMAT = "ocean_warp.policy/1"
 _ZIP_MAGIC = b"PK\x03\x04"
@@ -64,6 +65,10 @@ def read_checkpoint(path: str | os.PathLike, *, map_location: str | torch.device
     if start != _ZIP_MAGIC:
         raise CheckpointError(f"checkpoint {path!r} is not an ocean_warp policy checkpoint: not a file written by "
                               "torch.save (text, another format, or damaged at its start)")
+    if is_torchscript_archive(path):
+        raise CheckpointError(f"checkpoint {path!r} is a TorchScript export (for libtorch, made by ocean-warp "
+                              "export-policy), not a policy checkpoint: pass the checkpoint ocean-warp train writes "
+                              "(policy.pt or model_<it>.pt in its run folder)")
     try:
         data = torch.load(path, map_location=map_location, weights_only=True)
     except pickle.UnpicklingError as error:
@@ -88,6 +93,27 @@ def read_checkpoint(path: str | os.PathLike, *, map_location: str | torch.device
     if missing:
         raise CheckpointError(f"checkpoint {path!r} lacks {', '.join(missing)}")
     return data
+
+
+def is_torchscript_archive(path: str | os.PathLike) -> bool:
+    """Whether ``path`` is a TorchScript archive (a zip holding code/ and constants.pkl), which torch.load
+    would refuse with a warning and a misleading error."""
+    try:
+        with zipfile.ZipFile(path) as archive:
+            return any(name.endswith("/constants.pkl") for name in archive.namelist())
+    except (OSError, zipfile.BadZipFile):
+        return False
+
+
+def other_task_note(policy: "Policy", task: str) -> str | None:
+    """None where ``policy`` was trained on ``task`` (a task id, with or without "ocean_warp/"); else what
+    to tell a user who sails it there (its observation may fit, but it learnt another task)."""
+    trained = policy.task.removeprefix("ocean_warp/")
+    if trained == task.removeprefix("ocean_warp/"):
+        return None
+    task = task.removeprefix("ocean_warp/")
+    return (f"the policy was trained on {trained}, not on {task}; its results here show how it transfers, not "
+            f"what training on {task} gives")
 
 
 class Policy(torch.nn.Module):

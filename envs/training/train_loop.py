@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import ast
 import contextlib
+import copy
 import csv
 import dataclasses
 import datetime
@@ -52,6 +53,7 @@ import torch
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.cli_support import (checked_output_folder, finite_above, option_problem, plural, report_error)
 from ocean_warp.devices import resolve_device
+from ocean_warp.termination import Terminated
 
 from .agents import TrainConfig, agent_config
 from ..sailing_env import SailingEnv
@@ -493,25 +495,33 @@ class Training:
         config, context, ranks = self.config, self.context, self.ranks
         started = self.started
         iteration = self.start_iteration - 1
-        for iteration in range(self.start_iteration, self.start_iteration + self.iterations):
-            self.prepare(iteration)
-            tic = time.perf_counter()
-            rollout, failure = self.collect(iteration)
-            collect_time = time.perf_counter() - tic
-            tic = time.perf_counter()
-            losses, gathered = self.update(iteration, rollout, failure)
-            learn_time = time.perf_counter() - tic
-            self.record(iteration, losses, gathered, collect_time, learn_time)
-            last = iteration == self.start_iteration + self.iterations - 1
-            out_of_time = self.minutes is not None and time.perf_counter() - started >= 60.0 * self.minutes
-            if self.minutes is not None and context.distributed:
-                out_of_time = ranks.broadcast(out_of_time)  # rank 0's clock, or the ranks would part ways
-            if (iteration + 1) % config.save_interval == 0 or last or out_of_time:
-                self.checkpoint(iteration)
+        completed = None  # rank 0: the last completed iteration's checkpoint, kept in memory for an interruption
+        try:
+            for iteration in range(self.start_iteration, self.start_iteration + self.iterations):
+                self.prepare(iteration)
+                tic = time.perf_counter()
+                rollout, failure = self.collect(iteration)
+                collect_time = time.perf_counter() - tic
+                tic = time.perf_counter()
+                losses, gathered = self.update(iteration, rollout, failure)
+                learn_time = time.perf_counter() - tic
+                self.record(iteration, losses, gathered, collect_time, learn_time)
+                if context.is_main:
+                    completed = self._snapshot(iteration)
+                last = iteration == self.start_iteration + self.iterations - 1
+                out_of_time = self.minutes is not None and time.perf_counter() - started >= 60.0 * self.minutes
+                if self.minutes is not None and context.distributed:
+                    out_of_time = ranks.broadcast(out_of_time)  # rank 0's clock, or the ranks would part ways
+                if (iteration + 1) % config.save_interval == 0 or last or out_of_time:
+                    self.checkpoint(iteration)
+                if context.is_main:
+                    _write_history(os.path.join(self.run_dir, "progress.csv"), self.history)
+                if out_of_time:
+                    break
+        except (KeyboardInterrupt, Terminated):
             if context.is_main:
-                _write_history(os.path.join(self.run_dir, "progress.csv"), self.history)
-            if out_of_time:
-                break
+                self._save_interrupted(completed)
+            raise
         self.close()
         policy_path = os.path.join(self.run_dir, "policy.pt")
         if context.is_main:
@@ -520,6 +530,34 @@ class Training:
         return TrainResult(run_dir=self.run_dir, checkpoint=self.last_checkpoint, policy=policy_path,
                            iterations=iteration - self.start_iteration + 1, wall_time=time.perf_counter() - started,
                            history=self.history, world_size=context.world_size, parameter_checksums=checksums)
+
+    def _snapshot(self, iteration: int) -> dict:
+        """Rank 0: a copy of the checkpoint ``iteration`` would write (its own random state only: an
+        interruption may reach the ranks at different moments, so it gathers nothing)."""
+        payload = copy.deepcopy(_checkpoint_payload(iteration, self.alg, self.config, self.env, self.curriculum, [],
+                                                    [_random_state(self.device)], self.context.world_size))
+        payload["history"] = list(self.history)  # rows are never changed once appended
+        return payload
+
+    def _save_interrupted(self, completed: dict | None) -> None:
+        """Ctrl-C or SIGTERM: write ``model_<it>.pt`` and ``policy.pt`` of the last completed iteration (the
+        networks of an iteration cut short are half updated) unless its checkpoint exists, and say so."""
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+        prog = "ocean-warp train"
+        if completed is None:
+            print(f"{prog}: interrupted before the first iteration ended: no checkpoint written", file=sys.stderr)
+            return
+        iteration = int(completed["iteration"])
+        path = os.path.join(self.run_dir, f"model_{iteration}.pt")
+        if self.last_checkpoint != path:
+            save_checkpoint(path, completed)
+            self.last_checkpoint = path
+        export_policy(completed, os.path.join(self.run_dir, "policy.pt"))
+        _write_history(os.path.join(self.run_dir, "progress.csv"), completed["history"])
+        print(f"{prog}: interrupted; iteration {iteration} saved as {path} (and policy.pt beside it); "
+              f"--resume {path} continues", file=sys.stderr, flush=True)
 
     def close(self) -> None:
         """Stop a ShardedSailingEnv's workers (also on Ctrl-C), close the progress bar and the log writer.
@@ -640,20 +678,28 @@ def _save(run_dir: str, iteration: int, alg, config: TrainConfig, env: BatchedEn
     states = ranks.gather(_random_state(device))
     if not ranks.context.is_main:
         return path
+    save_checkpoint(path, _checkpoint_payload(iteration, alg, config, env, curriculum, history, states,
+                                              ranks.context.world_size))
+    return path
+
+
+def _checkpoint_payload(iteration: int, alg, config: TrainConfig, env: BatchedEnv, curriculum: _Curriculum,
+                        history: list[dict[str, float]], states: list[dict], world_size: int) -> dict:
+    """What ``model_<iteration>.pt`` holds: networks, optimiser, what describes them, the random states
+    (``states``: rank 0's, then the other ranks' where known), the curriculum and the history."""
     payload = dict(alg.save())
     payload.update({
         "task": config.task, "observation": env.task.observation.value if hasattr(env.task.observation, "value")
         else str(env.task.observation), "num_obs": env.num_policy_obs, "num_actions": env.num_actions,
         "actor_config": config.ppo.actor_config(), "critic_config": config.ppo.critic_config(),
         "iteration": iteration, "torch_rng_state": states[0]["torch"], "curriculum": curriculum.state(),
-        "history": history, "train_config": json.dumps(_jsonable(config)), "world_size": ranks.context.world_size,
+        "history": history, "train_config": json.dumps(_jsonable(config)), "world_size": world_size,
     })
     if "cuda" in states[0]:
         payload["cuda_rng_state"] = states[0]["cuda"]
     if len(states) > 1:
         payload["rank_rng_states"] = states[1:]
-    save_checkpoint(path, payload)
-    return path
+    return payload
 
 
 def _check_resumable(checkpoint: dict, config: TrainConfig, path: str) -> None:

@@ -13,9 +13,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 
 import numpy as np
 import warp as wp
+from tqdm import tqdm
 
 from ocean_warp.kernels.heading_hold import accumulate_course_keeping
 from ..replay import ReplayedLaunches
@@ -51,8 +53,9 @@ class PolarResult:
 def speed_polar(*, wind_speeds=(4.0, 7.0, 10.0), wind_angles_deg=np.arange(0.0, 181.0, 15.0),
                 sheets_deg=np.arange(0.0, 91.0, 15.0), settle_time: float = 60.0, average_time: float = 20.0,
                 heading_tolerance_deg: float = 5.0, boat: EBoatConfig | None = None, dt: float = 0.05,
-                device=None) -> PolarResult:
-    """Sail the grid and return the polar (see the module docstring)."""
+                device=None, progress: bool | None = False) -> PolarResult:
+    """Sail the grid and return the polar (see the module docstring). ``progress``: a progress bar of the
+    time steps on stderr (None: only where stderr is a terminal)."""
     speeds = np.asarray(wind_speeds, dtype=np.float64)
     angles = np.radians(np.asarray(wind_angles_deg, dtype=np.float64))
     sheets = np.radians(np.asarray(sheets_deg, dtype=np.float64))
@@ -73,7 +76,8 @@ def speed_polar(*, wind_speeds=(4.0, 7.0, 10.0), wind_angles_deg=np.arange(0.0, 
     # Each a captured graph: uncaptured, a step's launches took ten times the GPU's time for the step.
     settle_step = ReplayedLaunches(lambda: _sail_step(sim, autopilot), sim.device)
     averaging_step = ReplayedLaunches(lambda: _sail_step(sim, autopilot, sums), sim.device)
-    for step in range(steps):
+    for step in tqdm(range(steps), desc="polar", unit="step", file=sys.stderr, dynamic_ncols=True,
+                     disable=None if progress is None else not progress):
         (averaging_step if step >= steps - averaging else settle_step)()
     mean_speed, heading_error, heel = (sums.numpy().astype(np.float64) / averaging).T
     held = ((np.abs(heading_error) < math.radians(heading_tolerance_deg))

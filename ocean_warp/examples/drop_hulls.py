@@ -14,6 +14,7 @@ import sys
 
 import numpy as np
 import warp as wp
+from tqdm import tqdm
 
 import ocean_warp as ow
 from ocean_warp.atomic_files import atomic_output, save_figure
@@ -49,10 +50,12 @@ def boat_types() -> list[ow.BoatType]:
     return types
 
 
-def run(out_dir: str, *, device=None, boats_per_shape: int = 8, seconds: float = 40.0, seed: int = 3) -> dict:
+def run(out_dir: str, *, device=None, boats_per_shape: int = 8, seconds: float = 40.0, seed: int = 3,
+        progress: bool | None = False) -> dict:
     """Drop ``boats_per_shape`` hulls of each shape at random places, heights (1-2.5 m) and tilts (seeded by
     ``seed``), simulate ``seconds`` [s] on ``device`` and write the PNG and CSV into ``out_dir``; returns the
-    device, the number of boats, how many ended flagged (``Fleet.status`` not 0) and the files."""
+    device, the number of boats, how many ended flagged (``Fleet.status`` not 0) and the files.
+    ``progress``: a progress bar of the time steps on stderr (None: only where stderr is a terminal)."""
     rng = np.random.default_rng(seed)
     types = boat_types()
     type_of_boat = np.repeat(np.arange(len(types)), boats_per_shape)
@@ -67,7 +70,8 @@ def run(out_dir: str, *, device=None, boats_per_shape: int = 8, seconds: float =
     simulator = ow.Simulator(ocean, fleet, config)
     steps = int(round(seconds / config.dt))
     times, heave, roll = np.arange(1, steps + 1) * config.dt, np.empty((steps, count)), np.empty((steps, count))
-    for step in range(steps):
+    for step in tqdm(range(steps), desc="drop-hulls", unit="step", file=sys.stderr, dynamic_ncols=True,
+                     disable=None if progress is None else not progress):
         simulator.step()
         heave[step] = fleet.state.position.numpy()[:, 2]
         roll[step] = roll_pitch_yaw(fleet.state.orientation.numpy())[:, 0]
@@ -124,7 +128,8 @@ def main(argv=None) -> int:
     wp.config.log_level = logging.WARNING
     checked_output_folder(parser, args.out)
     os.makedirs(args.out, exist_ok=True)
-    report = run(args.out, device=device, boats_per_shape=args.boats_per_shape, seconds=args.seconds)
+    report = run(args.out, device=device, boats_per_shape=args.boats_per_shape, seconds=args.seconds,
+                 progress=None)  # a bar where stderr is a terminal
     print(f"{plural(report['boats'], 'hull')} on {report['device']} for {args.seconds:g} s, "
           f"{report['flagged']} flagged (capsized, sunk, flying or non-finite)")
     for path in report["files"]:

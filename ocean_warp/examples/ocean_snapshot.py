@@ -26,7 +26,8 @@ from ocean_warp.cli_support import (
     finite_above,
     finite_at_least,
 )
-from ocean_warp.ocean_config import MAX_RESOLUTION, MIN_RESOLUTION
+from ocean_warp.ocean_config import (MAX_RESOLUTION, MIN_RESOLUTION, SIGNIFICANT_WAVE_HEIGHT_RULE,
+                                    is_valid_significant_wave_height)
 
 from .ocean_snapshot_options import parser as _parser
 
@@ -118,7 +119,7 @@ def main(argv=None) -> int:
         ("--resolution", resolution,
          MIN_RESOLUTION <= resolution <= MAX_RESOLUTION and not resolution & (resolution - 1),
          f"a power of two from {MIN_RESOLUTION} to {MAX_RESOLUTION}"),
-        ("--hs", args.hs, finite_at_least(args.hs, 0.0), "a number >= 0 [m]"),
+        ("--hs", args.hs, is_valid_significant_wave_height(args.hs), SIGNIFICANT_WAVE_HEIGHT_RULE),
         ("--tp", args.tp, finite_above(args.tp, 0.0), "a number > 0 [s]"),
         ("--seconds", args.seconds, finite_above(args.seconds, 0.0), "a number > 0 [s]"),
     ))

@@ -91,7 +91,7 @@ def main(argv=None) -> int:
     start = time.perf_counter()
     result = speed_polar(wind_speeds=args.wind_speeds, wind_angles_deg=np.arange(0.0, 180.0 + 1e-9, args.angle_step),
                          sheets_deg=np.arange(0.0, 90.0 + 1e-9, args.sheet_step), settle_time=args.settle,
-                         device=device)
+                         device=device, progress=None)  # a bar where stderr is a terminal
     elapsed = time.perf_counter() - start
     png, table = os.path.join(args.out, "polar.png"), os.path.join(args.out, "polar.csv")
     limit = hull_speed(eboat)

@@ -33,6 +33,7 @@ from ..kernels.ray_cast import (
     resample_heights,
     water_band,
 )
+from ..mesh_files import read_mesh_file
 from ..meshes import MeshData, concatenate
 from ..ocean import Ocean
 from ..validation import require_finite, require_positive
@@ -115,15 +116,9 @@ class SceneObject:
     @classmethod
     def from_file(cls, path, position=(0.0, 0.0, 0.0), *, yaw: float = 0.0, scale: float = 1.0,
                   floats: bool = False, draft: float = 0.0, color=(0.5, 0.5, 0.55)) -> SceneObject:
-        """Any mesh trimesh reads (OBJ, STL, PLY, GLB, ...), times ``scale``, placed at ``position`` [m]."""
-        import trimesh
-
-        try:
-            loaded = trimesh.load(str(path), force="mesh")
-        except Exception as error:  # trimesh raises many kinds
-            raise ValueError(f"SceneObject.from_file: cannot read a mesh from {str(path)!r}: {error}") from None
-        if len(loaded.faces) == 0:
-            raise ValueError(f"SceneObject.from_file: {str(path)!r} holds no triangles")
+        """A mesh file (OBJ, STL, PLY, OFF, GLB or GLTF: ``ocean_warp.mesh_files``), times ``scale``, placed
+        at ``position`` [m]."""
+        loaded = read_mesh_file("SceneObject.from_file", path)
         scale = require_positive("SceneObject.from_file", "scale", scale)
         mesh = MeshData(np.asarray(loaded.vertices, dtype=np.float64) * scale, np.full(len(loaded.faces), 3, np.int32),
                         np.asarray(loaded.faces, dtype=np.int32).reshape(-1))

@@ -43,6 +43,7 @@ import sys
 
 from ocean_warp.cli_support import (check_options, checked_device, checked_output_file, fail, finite_above,
                                     finite_at_least, plural, report_error)
+from ocean_warp.ocean_config import SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_significant_wave_height
 
 from . import ros1
 from .node_options import parser as _parser
@@ -62,8 +63,8 @@ def _check(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
         ("--duration", args.duration, args.duration is None or finite_above(args.duration, 0.0), "a number > 0 [s]"),
         ("--lockstep-timeout", args.lockstep_timeout, finite_at_least(args.lockstep_timeout, 0.0),
          "a finite number >= 0 [s]"),
-        ("--sea-state", args.sea_state, args.sea_state is None or finite_at_least(args.sea_state, 0.0),
-         "a finite number >= 0 [m]"),
+        ("--sea-state", args.sea_state, args.sea_state is None or is_valid_significant_wave_height(args.sea_state),
+         SIGNIFICANT_WAVE_HEIGHT_RULE),
         ("--wind", args.wind, args.wind is None or finite_at_least(args.wind, 0.0), "a finite number >= 0 [m/s]"),
     ))
     if args.lockstep_timeout and not args.lockstep:

@@ -12,9 +12,10 @@ action to [-1, 1]). The observation normalisation, (x - mean) / (std + eps) with
 training, is inside the graph. The file carries its metadata (ONNX: ``metadata_props``; TorchScript: the
 extra file ``ocean_warp_policy.json``): task, observation set, num_obs, num_actions, what each
 observation value and each action is (JSON lists), the checkpoint format, and the checkpoint it came from.
-Before the file replaces anything at --out (atomically), onnxruntime (or torch.jit.load) runs it on 256
-random observations spread as in training and must reproduce the torch policy's actions to 1e-5: the
-actions clipped to [-1, 1], as the boat applies them, and the unclipped means up to 1, relative beyond.
+Before the file replaces anything at --out (atomically), onnxruntime (without it, onnx's reference evaluator;
+for TorchScript, torch.jit.load) runs it on 256 random observations spread as in training and must reproduce
+the torch policy's actions to 1e-5: the actions clipped to [-1, 1], as the boat applies them, and the
+unclipped means up to 1, relative beyond.
 (Trained policies' unclipped means reach tens, and float32 resolves 40 to about 4e-6 only. Far outside the
 training spread, where hidden activations are large, float32 sums are good to some 2e-5 only: torch itself
 differs that much between a batch of 1 and one of 4000.)
@@ -34,7 +35,6 @@ import logging
 import os
 import sys
 import warnings
-import zipfile
 
 import numpy as np
 import torch
@@ -42,7 +42,8 @@ import torch
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.cli_support import check_options, checked_output_file, fail
 from ocean_warp.envs.registration import DEFAULT_TASK
-from ocean_warp.envs.training.policy_io import CHECKPOINT_FORMAT, CheckpointError, Policy, load_policy
+from ocean_warp.envs.training.policy_io import (CHECKPOINT_FORMAT, CheckpointError, Policy, is_torchscript_archive,
+                                               load_policy)
 
 from .policy_export_options import OUT_FOLDER, parser as _parser
 from .onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
@@ -150,21 +151,22 @@ class ExportSummary:
         format: "onnx" or "torchscript".
         metadata: the metadata stored in it (string to string).
         difference: the file's actions against the torch policy's on the check's observations; None where
-            it was not checked (no onnxruntime for an ONNX file, or ``check`` off).
+            it was not checked (``check`` off).
+        checker: what ran the file for the check: "onnxruntime", "onnx's reference evaluator" (ONNX without
+            onnxruntime) or "torch.jit.load"; "" where it was not checked.
     """
 
     path: str
     format: str
     metadata: dict[str, str]
     difference: ActionDifference | None
+    checker: str = ""
 
     def line(self) -> str:
         """The one-line summary ``ocean-warp export-policy`` prints."""
         meta = self.metadata
-        checker = "onnxruntime" if self.format == "onnx" else "torch.jit.load"
-        unchecked = f"not run (no onnxruntime: {INSTALL_HINT})" if self.format == "onnx" else "not checked"
-        check = unchecked if self.difference is None else (f"{checker} reproduces the torch policy to "
-                                                           f"{self.difference.text()}")
+        check = "not checked" if self.difference is None else (f"{self.checker} reproduces the torch policy to "
+                                                               f"{self.difference.text()}")
         kind = f"ONNX opset {OPSET}" if self.format == "onnx" else "TorchScript"
         return (f"wrote {self.path}: {kind}, the {meta['task']} policy (observation {meta['observation']!r}, "
                 f"{meta['num_obs']} values -> {meta['num_actions']} actions, normalisation "
@@ -337,7 +339,8 @@ def export_onnx(policy: Policy | str | os.PathLike, out: str | os.PathLike, *, s
         out: the ``.onnx`` file to write (its folder is made).
         source: the checkpoint a Policy given as ``policy`` was read from, named in the metadata (a path given
             as ``policy`` is its own source).
-        check: run the file with onnxruntime (where installed) before it replaces ``out``, and refuse it
+        check: run the file with onnxruntime (without it: onnx's reference evaluator, numpy's
+            implementation of every operator, independent of torch) before it replaces ``out``, and refuse it
             unless it reproduces the torch policy's actions to TOLERANCE.
 
     Raises:
@@ -354,11 +357,25 @@ def export_onnx(policy: Policy | str | os.PathLike, out: str | os.PathLike, *, s
     onnx.checker.check_model(model)
     with atomic_output(out, suffix=".onnx") as temporary:
         onnx.save_model(model, temporary)
-        difference = None
-        if check and importlib.util.find_spec("onnxruntime") is not None:
-            difference = _difference(policy, OnnxPolicy(temporary).act)
-        summary = _checked(ExportSummary(os.fspath(out), "onnx", metadata, difference))
+        difference, checker = None, ""
+        if check:
+            checker, run = _onnx_runner(temporary)
+            difference = _difference(policy, run)
+        summary = _checked(ExportSummary(os.fspath(out), "onnx", metadata, difference, checker))
     return summary
+
+
+def _onnx_runner(path: str):
+    """(name, run) for the check of the ONNX file at ``path``: onnxruntime, what the boat runs, where it
+    imports; else onnx's reference evaluator (slow, but these networks are small)."""
+    try:
+        import onnxruntime  # noqa: F401 - only whether it imports
+    except ImportError:
+        from onnx.reference import ReferenceEvaluator
+
+        evaluator = ReferenceEvaluator(path)
+        return "onnx's reference evaluator", lambda observations: evaluator.run(None, {INPUT_NAME: observations})[0]
+    return "onnxruntime", OnnxPolicy(path).act
 
 
 def export_torchscript(policy: Policy | str | os.PathLike, out: str | os.PathLike, *,
@@ -390,7 +407,7 @@ def export_torchscript(policy: Policy | str | os.PathLike, out: str | os.PathLik
         if check:
             loaded = torch.jit.load(temporary, map_location="cpu")
             difference = _difference(policy, lambda batch: loaded(torch.from_numpy(batch)).numpy())
-        summary = _checked(ExportSummary(os.fspath(out), "torchscript", metadata, difference))
+        summary = _checked(ExportSummary(os.fspath(out), "torchscript", metadata, difference, "torch.jit.load"))
     return summary
 
 
@@ -441,16 +458,6 @@ def _checkpoint_path(parser: argparse.ArgumentParser, args: argparse.Namespace) 
         fail(parser, f"--task: {error}")
 
 
-def _is_torchscript_archive(path: str) -> bool:
-    """Whether ``path`` is a TorchScript archive (a zip holding code/ and constants.pkl), which torch.load would
-    refuse with a warning and a misleading error."""
-    try:
-        with zipfile.ZipFile(path) as archive:
-            return any(name.endswith("/constants.pkl") for name in archive.namelist())
-    except (OSError, zipfile.BadZipFile):
-        return False
-
-
 def _out_path(parser: argparse.ArgumentParser, args: argparse.Namespace, checkpoint: str, form: str) -> str:
     """--out, or OUT_FOLDER/<checkpoint name> with the format's suffix, checked before anything runs (the
     folder is made when the file is written)."""
@@ -472,7 +479,7 @@ def main(argv=None) -> int:
         fail(parser, f"--format onnx needs the onnx package: {INSTALL_HINT}")
     checkpoint = _checkpoint_path(parser, args)
     out = _out_path(parser, args, checkpoint, form)
-    if _is_torchscript_archive(checkpoint):
+    if is_torchscript_archive(checkpoint):
         fail(parser, f"--policy {checkpoint}: a TorchScript archive (an exported policy?), not a policy checkpoint "
                      f"({CHECKPOINT_FORMAT}); export from the checkpoint it came from")
     try:

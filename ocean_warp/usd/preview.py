@@ -2,7 +2,8 @@
 
 Everything is read back from the stage file (not from the simulation), so the picture shows what was
 written: the ocean mesh seen from above and coloured by height, each boat's parts as filled outlines
-(hull, keel, boom and sail, rudder, from both layouts: one prim per boat or point instancers), the
+(hull, keel, boom and sail, rudder, from both layouts: one prim per boat or point instancers) and its path
+over the whole stage, the
 scene's objects under ``/World/Objects`` (buoys, piles: their outlines from above, in their colours), the
 waypoints and the path through them, and the wind's direction.
 """
@@ -21,7 +22,7 @@ from pxr import Usd, UsdGeom
 from ..atomic_files import atomic_output
 from .paths import FLEET, OBJECTS, OCEAN, ROUTE_PATH, WAYPOINTS, WIND, WIND_DIRECTION_ATTRIBUTE, WIND_SPEED_ATTRIBUTE
 
-__all__ = ["render_preview", "MAX_OUTLINED_BOATS"]
+__all__ = ["render_preview", "spread_time_code", "boat_tracks", "MAX_OUTLINED_BOATS"]
 
 MAX_OUTLINED_BOATS = 256
 """Boats beyond this many are drawn as dots only (outlines cost time and are too small to see anyway)."""
@@ -89,22 +90,72 @@ def _meshes_below(prim):
     return [UsdGeom.Mesh(p) for p in Usd.PrimRange(prim) if p.IsA(UsdGeom.Mesh)]
 
 
+def _boat_centres(stage, time_code, cache: UsdGeom.XformCache) -> np.ndarray:
+    """(B, 2) every boat's origin in the world at ``time_code`` [m], from either layout (``cache`` at that
+    time code)."""
+    fleet = stage.GetPrimAtPath(FLEET)
+    centres = []
+    for child in fleet.GetChildren() if fleet else []:
+        if child.IsA(UsdGeom.PointInstancer):
+            positions = UsdGeom.PointInstancer(child).GetPositionsAttr().Get(time_code)
+            if child.GetName() == "Bodies" and positions is not None:
+                centres.append(_transform(np.array(positions, dtype=np.float64), cache.GetLocalToWorldTransform(child))
+                               [:, :2])
+        elif child.IsA(UsdGeom.Xformable):
+            centres.append(_transform(np.zeros((1, 3)), cache.GetLocalToWorldTransform(child))[:, :2])
+    return np.concatenate(centres) if centres else np.zeros((0, 2))
+
+
+def boat_tracks(stage, samples: int = 400) -> tuple[np.ndarray, np.ndarray]:
+    """(time codes (T,), boat origins (T, B, 2) [m]) at ``samples`` time codes spread evenly over the stage's
+    time range, rounded to whole time codes (fewer where the range is shorter)."""
+    start, end = stage.GetStartTimeCode(), stage.GetEndTimeCode()
+    codes = np.unique(np.rint(np.linspace(start, end, int(max(1, min(samples, end - start + 1))))))
+    cache = UsdGeom.XformCache(float(codes[0]))
+    positions = []
+    for code in codes:
+        cache.SetTime(float(code))
+        positions.append(_boat_centres(stage, float(code), cache))
+    return codes, np.stack(positions)
+
+
+def spread_time_code(stage_path) -> float:
+    """The time code at which the stage's boats stand farthest apart (largest mean distance from their
+    centroid, among :func:`boat_tracks`' samples): a frame that shows every boat, where the first one of a
+    fleet starting together shows a heap. The start time code for a stage without boats."""
+    stage = Usd.Stage.Open(os.fspath(stage_path))
+    if stage is None:
+        raise ValueError(f"spread_time_code: USD cannot open {os.fspath(stage_path)!r}")
+    codes, positions = boat_tracks(stage)
+    if positions.shape[1] == 0:
+        return float(stage.GetStartTimeCode())
+    spread = np.linalg.norm(positions - positions.mean(axis=1, keepdims=True), axis=2).mean(axis=1)
+    return float(codes[int(np.argmax(spread))])
+
+
+def _draw_tracks(axes, stage) -> None:
+    """Every boat's path over the whole stage, a thin line each."""
+    codes, positions = boat_tracks(stage)
+    if len(codes) < 2 or positions.shape[1] == 0:
+        return
+    for boat in range(positions.shape[1]):
+        axes.plot(positions[:, boat, 0], positions[:, boat, 1], "-", color="crimson", lw=0.7, alpha=0.6, zorder=6,
+                  label="boat paths (whole run)" if boat == 0 else None)
+
+
 def _boat_shapes(stage, time_code, cache: UsdGeom.XformCache):
-    """(outlines [(K, 2) polygons], colours, boat centres (B, 2)) of every boat part in the world at
-    ``time_code``, from either layout."""
+    """(outlines [(K, 2) polygons], colours) of every boat part in the world at ``time_code``, from either
+    layout (at most :data:`MAX_OUTLINED_BOATS` boats)."""
     mesh_points = _MeshPoints(time_code)
     fleet = stage.GetPrimAtPath(FLEET)
-    outlines, colors, centres = [], [], []
+    outlines, colors, boats = [], [], 0
     if not fleet:
-        return outlines, colors, np.zeros((0, 2))
+        return outlines, colors
     for child in fleet.GetChildren():
         if child.IsA(UsdGeom.PointInstancer):
             instancer = UsdGeom.PointInstancer(child)
             transforms = instancer.ComputeInstanceTransformsAtTime(time_code, time_code)
             to_world = cache.GetLocalToWorldTransform(child)
-            positions = instancer.GetPositionsAttr().Get(time_code)
-            if child.GetName() == "Bodies" and positions is not None:
-                centres += [_transform(np.array(positions, dtype=np.float64), to_world)[:, :2]]
             for target in instancer.GetPrototypesRel().GetTargets():
                 prototype = stage.GetPrimAtPath(target)
                 above = cache.GetLocalToWorldTransform(prototype.GetParent()).GetInverse()
@@ -115,14 +166,14 @@ def _boat_shapes(stage, time_code, cache: UsdGeom.XformCache):
                         outlines.append(_convex_hull(_transform(local, transform * to_world)[:, :2]))
                         colors.append(color)
         elif child.IsA(UsdGeom.Xformable):
-            centres.append(_transform(np.zeros((1, 3)), cache.GetLocalToWorldTransform(child))[:, :2])
-            if len(centres) > MAX_OUTLINED_BOATS:
+            boats += 1
+            if boats > MAX_OUTLINED_BOATS:
                 continue
             for mesh in _meshes_below(child):
                 world = _transform(mesh_points(mesh), cache.GetLocalToWorldTransform(mesh.GetPrim()))
                 outlines.append(_convex_hull(world[:, :2]))
                 colors.append(_mesh_color(mesh, time_code))
-    return outlines, colors, (np.concatenate(centres) if centres else np.zeros((0, 2)))
+    return outlines, colors
 
 
 def _draw_ocean(figure, axes, stage, time_code) -> bool:
@@ -201,7 +252,8 @@ def _draw_wind(axes, stage) -> None:
 
 
 def render_preview(stage_path, png_path=None, *, time_code: float | None = None, dpi: int = 120) -> str:
-    """Draw the stage at ``stage_path`` at ``time_code`` (default: its first) from above and write the
+    """Draw the stage at ``stage_path`` at ``time_code`` (default: its first; :func:`spread_time_code` gives
+    one where the boats stand apart) from above, with every boat's path over the whole stage, and write the
     picture to ``png_path`` (default: the stage's path with ``.png``), atomically; returns the PNG's path."""
     stage_path = os.fspath(stage_path)
     if not os.path.isfile(stage_path):
@@ -221,12 +273,15 @@ def render_preview(stage_path, png_path=None, *, time_code: float | None = None,
         axes.set_facecolor((0.75, 0.85, 0.95))
     _draw_route(axes, stage, cache)
     _draw_objects(axes, stage, code, cache)
-    outlines, colors, centres = _boat_shapes(stage, code, cache)
+    _draw_tracks(axes, stage)
+    outlines, colors = _boat_shapes(stage, code, cache)
+    centres = _boat_centres(stage, code, cache)
     if outlines:
         axes.add_collection(PolyCollection(outlines, facecolors=colors, edgecolors="black", linewidths=0.4,
                                            zorder=8))
     if len(centres):
-        axes.scatter(centres[:, 0], centres[:, 1], s=4, color="crimson", zorder=7, label=f"{len(centres)} boats")
+        axes.scatter(centres[:, 0], centres[:, 1], s=16, color="crimson", edgecolors="black", linewidths=0.4,
+                     zorder=9, label=f"{len(centres)} boats")
     _draw_wind(axes, stage)
     axes.set_aspect("equal")
     axes.autoscale_view()

@@ -83,7 +83,8 @@ def test_help_formatter_leaves_out_defaults_that_say_nothing():
 
 BAD_VALUES = [
     (["ocean", "--resolution", "100"], "--resolution must be a power of two from 16 to 2048, got 100"),
-    (["ocean", "--hs", "-1"], "--hs must be a number >= 0 [m], got -1.0"),
+    (["ocean", "--hs", "-1"], "--hs must be a number from 0 to 5 [m] (the wave and boat models hold for seas a small "
+     "craft sails), got -1.0"),
     (["ocean", "--tp", "0"], "--tp must be a number > 0 [s]"),
     (["ocean", "--seconds", "nan"], "--seconds must be a number > 0 [s], got nan"),
     (["polar", "--wind-speeds", "7", "-3"], "--wind-speeds must be numbers > 0 [m/s], got -3.0"),

@@ -57,6 +57,52 @@ def test_nan_vertex_is_refused():
         ow.Hull(vertices, box.faces)
 
 
+def _obj_text(vertices, faces) -> str:
+    """An OBJ file's text: a ``v`` line per vertex (numpy's repr, so NaN is written "nan"), an ``f`` line per
+    triangle (1-based)."""
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in vertices.tolist()]
+    return "\n".join(lines + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in faces.tolist()]) + "\n"
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_a_mesh_file_with_a_non_finite_vertex_is_refused(tmp_path, rng, bad):
+    """trimesh would drop the vertex and its faces (the box would load with a corner cut off)."""
+    box = trimesh.creation.box(extents=rng.uniform(0.5, 3.0, size=3))
+    vertices = np.array(box.vertices)
+    corner = int(rng.integers(len(vertices)))
+    vertices[corner, int(rng.integers(3))] = bad
+    path = tmp_path / "hull.obj"
+    path.write_text(_obj_text(vertices, np.asarray(box.faces)))
+    with pytest.raises(ValueError, match=rf"^Hull.from_file: {path}: 1 of its 8 vertices are NaN or infinite"):
+        ow.Hull.from_file(path)
+    vertices[corner] = box.vertices[corner]  # the same file with the corner back loads whole
+    path.write_text(_obj_text(vertices, np.asarray(box.faces)))
+    assert ow.Hull.from_file(path).volume == pytest.approx(np.prod(box.extents), rel=1e-6)
+
+
+def test_a_folder_is_not_a_mesh_file(tmp_path):
+    folder = tmp_path / "hull.obj"
+    folder.mkdir()
+    with pytest.raises(ValueError, match=rf"^Hull.from_file: {folder} is a folder, not a mesh file"):
+        ow.Hull.from_file(folder)
+    with pytest.raises(FileNotFoundError, match="^Hull.from_file: no such file"):
+        ow.Hull.from_file(tmp_path / "missing.obj")
+
+
+@pytest.mark.parametrize("suffix", ["obj", "stl", "ply", "glb"])
+def test_random_bytes_are_not_a_mesh(tmp_path, rng, suffix):
+    path = tmp_path / f"noise.{suffix}"
+    path.write_bytes(rng.bytes(512))
+    with pytest.raises(ValueError, match=rf"^Hull.from_file: {path} is not a mesh of a readable format "
+                                         r"\(OBJ, STL, PLY, OFF, GLB, GLTF\)") as raised:
+        ow.Hull.from_file(path)
+    assert "charset_normalizer" not in str(raised.value) and "\n" not in str(raised.value)
+    other = tmp_path / "noise.bin"
+    other.write_bytes(rng.bytes(512))
+    with pytest.raises(ValueError, match="its name must end in one of .obj, .stl, .ply, .off, .glb, .gltf"):
+        ow.Hull.from_file(other)
+
+
 def test_inward_normals_are_turned_out_with_a_warning(rng):
     box = trimesh.creation.box(extents=rng.uniform(0.5, 3.0, size=3))
     with pytest.warns(HullRepairWarning, match="turned inward-facing normals outward"):

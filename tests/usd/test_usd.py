@@ -399,6 +399,28 @@ def test_preview_png_is_written(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["run.png", "run.usdc"]
 
 
+@pytest.mark.parametrize("instanced", [False, True])
+def test_the_preview_frame_is_where_the_fleet_is_most_spread(tmp_path, rng, instanced):
+    """Three boats start together, stand apart at 1 s and close up again at 2 s: the spread frame is 1 s's,
+    and the tracks hold each boat's recorded positions."""
+    from ocean_warp.usd.preview import boat_tracks, spread_time_code
+
+    apart = rng.uniform(20.0, 40.0, size=(3, 2))
+    positions = {0.0: np.zeros((3, 2)), 1.0: apart, 2.0: 0.2 * apart}
+    stage = tmp_path / "fleet.usdc"
+    level = [[0, 0, 0, 1]] * 3
+    with StageRecorder(stage, fps=1.0, fleet=FleetDrawing(3, instanced=instanced)) as recorder:
+        for time_s, xy in positions.items():
+            recorder.record(time_s, np.column_stack([xy, np.zeros(3)]), level)
+    rate = recorder.time_codes_per_second
+    assert spread_time_code(stage) == pytest.approx(1.0 * rate)
+    codes, tracks = boat_tracks(Usd.Stage.Open(str(stage)))
+    for time_s, xy in positions.items():
+        at = int(np.flatnonzero(codes == time_s * rate)[0])
+        np.testing.assert_allclose(tracks[at], xy, atol=1e-5)
+    assert render_preview(stage, time_code=spread_time_code(stage)).endswith("fleet.png")
+
+
 # --- issue 20: what a viewer or an importer sees -------------------------------------------------------------
 
 MISSION = {"A": (0.0, 0.0), "B": (70.71, -70.71), "C": (141.42, 0.0), "D": (70.71, 70.71)}  # the seed paper's

@@ -4,10 +4,12 @@ a random policy and the autopilot on the CPU, the command line, and the runner's
 
 from __future__ import annotations
 
+import argparse
 import csv
 import dataclasses
 import datetime
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -22,6 +24,7 @@ from ocean_warp.envs.apps.evaluation import (
     FleetController,
     PolicyController,
     RecordedDecision,
+    _policy_for,
     evaluate_mission,
     evaluation_task,
     main,
@@ -55,19 +58,21 @@ def tiny_mission(**changes) -> MissionConfig:
     return dataclasses.replace(task, simulator=simulator, **changes)
 
 
-def random_policy_file(path, *, constant_actions=None) -> None:
-    """A seed-observation policy for the mission with random weights; with ``constant_actions`` (3,), one
-    whose output layer ignores the observation and always gives these actions."""
+def random_policy_file(path, *, constant_actions=None, task="EBoatMission-v0", observation="seed",
+                       num_obs=5) -> None:
+    """A seed-observation policy for the mission with random weights (or for ``task``, reading
+    ``observation``, ``num_obs`` values); with ``constant_actions`` (3,), one whose output layer ignores the
+    observation and always gives these actions."""
     config = {"class_name": "MLPModel", "hidden_dims": [32, 32], "activation": "relu", "obs_normalization": False,
               "distribution_cfg": {"class_name": "GaussianDistribution", "init_std": 1.0}}
     torch.manual_seed(0)
-    actor = build_actor(5, 3, config)
+    actor = build_actor(num_obs, 3, config)
     if constant_actions is not None:
         last = [module for module in actor.modules() if isinstance(module, torch.nn.Linear)][-1]
         with torch.no_grad():
             last.weight.zero_()
             last.bias.copy_(torch.tensor(constant_actions))
-    save_checkpoint(path, {"task": "EBoatMission-v0", "observation": "seed", "num_obs": 5, "num_actions": 3,
+    save_checkpoint(path, {"task": task, "observation": observation, "num_obs": num_obs, "num_actions": 3,
                            "actor_config": config, "actor_state_dict": actor.state_dict()})
 
 
@@ -419,6 +424,9 @@ def unusable_checkpoints(folder) -> dict[str, str]:
     torch.save({"format": "ocean_warp.policy/1", "when": datetime.date(2026, 11, 23)}, folder / "code.pt")
     torch.save({"weights": torch.zeros(3)}, folder / "foreign.pt")
     (folder / "a_folder.pt").mkdir()
+    with warnings.catch_warnings():  # torch.jit is deprecated, yet it is what export-policy writes for libtorch
+        warnings.simplefilter("ignore", DeprecationWarning)
+        torch.jit.save(torch.jit.script(torch.nn.Linear(5, 3)), str(folder / "scripted.pt"))
     not_ours = "is not an ocean_warp policy checkpoint"
     return {"notes.txt": f"{not_ours}: not a file written by torch.save",
             "random.pt": f"{not_ours}: not a file written by torch.save",
@@ -427,7 +435,10 @@ def unusable_checkpoints(folder) -> dict[str, str]:
             "code.pt": f"{not_ours}: it holds datetime.date, not only tensors and plain data",
             "foreign.pt": f"{not_ours} (no 'format' key",
             "a_folder.pt": "is a folder, not an ocean_warp policy checkpoint file",
-            "missing.pt": "no such file"}
+            "missing.pt": "no such file",
+            "scripted.pt": "is a TorchScript export (for libtorch, made by ocean-warp export-policy), not a policy "
+                           "checkpoint: pass the checkpoint ocean-warp train writes (policy.pt or model_<it>.pt in "
+                           "its run folder)"}
 
 
 def test_cli_unusable_policy(tmp_path, capsys):
@@ -443,6 +454,38 @@ def test_cli_unusable_policy(tmp_path, capsys):
         assert message in err[0], (name, err)
         assert "weights_only" not in err[0] and "safe_globals" not in err[0]
     assert not (tmp_path / "out").exists()
+
+
+def test_a_policy_trained_on_another_task_gets_a_one_line_warning(tmp_path, capsys):
+    """A waypoint policy reads the mission's observation (the 'seed' set, 5 values), so it sails; eval says in
+    one line that it was trained elsewhere. A mission policy on the mission: no warning."""
+    parser = argparse.ArgumentParser(prog="ocean-warp eval")
+    for task in ("EBoatWaypoint-v0", "EBoatMission-v0"):
+        path = tmp_path / f"{task}.pt"
+        random_policy_file(path, task=task)
+        policy = _policy_for(parser, argparse.Namespace(policy=str(path), no_autopilot=False), "EBoatMission-v0")
+        assert policy.task == task
+        err = capsys.readouterr().err.strip().splitlines()
+        if task == "EBoatMission-v0":
+            assert err == []
+        else:
+            assert err == ["ocean-warp eval: warning: the policy was trained on EBoatWaypoint-v0, not on "
+                           "EBoatMission-v0; its results here show how it transfers, not what training on "
+                           "EBoatMission-v0 gives"]
+
+
+@pytest.mark.parametrize("task, observation, num_obs, reads", [
+    ("EBoatAvoid-v0", "seed", 5 + 24, "29 values (the 'seed' set's 5 and 24 lidar sectors)"),
+    ("EBoatWaypointPlus-v0", "plus", 15, "15 values (the 'plus' set)"),
+])
+def test_an_observation_mismatch_names_both_sets_and_sizes(task, observation, num_obs, reads, tmp_path):
+    random_policy_file(tmp_path / "policy.pt", task=task, observation=observation, num_obs=num_obs)
+    env = SailingEnv(tiny_mission(), 1, device="cpu", seed=0)
+    with pytest.raises(ValueError) as raised:
+        PolicyController(load_policy(tmp_path / "policy.pt")).reset(env)
+    assert str(raised.value) == (f"PolicyController: the policy (trained on {task}) reads {reads}, the task gives "
+                                 f"5 values (the 'seed' set): sail it on {task}, or pass a policy trained for this "
+                                 "task")
 
 
 def test_cli_runs_the_mission(tmp_path, capsys):

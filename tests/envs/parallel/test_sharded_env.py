@@ -159,7 +159,7 @@ def test_shared_ocean_follows_sea_state_changes_and_every_substep_updates():
                 assert torch.equal(expected, getattr(own.buffers, name)), (step, name)
         assert shared.significant_wave_height == single.significant_wave_height == \
             single.simulator.ocean.significant_wave_height
-    with pytest.raises(ValueError, match="hs must be a finite number"):
+    with pytest.raises(ValueError, match="hs must be a number from 0 to 5"):
         with ShardedSailingEnv(task, 2, workers=1) as env:
             env.set_significant_wave_height(-1.0)
 

@@ -170,13 +170,20 @@ def test_a_failed_launch_ends_with_one_line_naming_the_rank(capsys):
                                              "the messages above say why")
 
 
+def _child_noting(signal_name: str, ready, caught) -> str:
+    """A child program that creates ``ready``, then waits; ``signal_name`` makes it append the name to
+    ``caught`` and exit with status 3."""
+    return (f"import signal, sys, time\n"
+            f"signal.signal(signal.{signal_name}, lambda *_: (open({str(caught)!r}, 'a').write('{signal_name} '), "
+            f"sys.exit(3)))\n"
+            f"open({str(ready)!r}, 'w').close()\n"
+            f"time.sleep(600)\n")
+
+
 def test_ctrl_c_is_passed_to_torchrun_and_raised_once_it_has_exited(tmp_path):
     """The launcher forwards Ctrl-C (SIGINT) to its child exactly once, waits for it, and re-raises."""
     ready, caught = tmp_path / "ready", tmp_path / "caught"
-    child = (f"import signal, sys, time\n"
-             f"signal.signal(signal.SIGINT, lambda *_: (open({str(caught)!r}, 'a').write('SIGINT '), sys.exit(3)))\n"
-             f"open({str(ready)!r}, 'w').close()\n"
-             f"time.sleep(60)\n")
+    child = _child_noting("SIGINT", ready, caught)
 
     def interrupt_when_ready() -> None:
         deadline = time.monotonic() + 30.0
@@ -189,6 +196,30 @@ def test_ctrl_c_is_passed_to_torchrun_and_raised_once_it_has_exited(tmp_path):
     with pytest.raises(KeyboardInterrupt):
         launch([sys.executable, "-c", child], 2)
     assert caught.read_text() == "SIGINT " and time.monotonic() - started < 30.0
+
+
+def test_launch_passes_sigterm_on_to_torchrun(tmp_path):
+    """SIGTERM to ``ocean-warp train --gpus G`` (the handler ocean-warp installs) reaches torchrun as SIGTERM,
+    and the launcher ends with Terminated (status 143) once it has exited."""
+    from ocean_warp.termination import Terminated, exit_cleanly_on_sigterm
+
+    ready, caught = tmp_path / "ready", tmp_path / "caught"
+    child = _child_noting("SIGTERM", ready, caught)
+
+    def terminate_when_ready() -> None:
+        while not ready.exists():
+            time.sleep(0.02)
+        os.kill(os.getpid(), signal.SIGTERM)
+
+    previous = signal.getsignal(signal.SIGTERM)
+    try:
+        exit_cleanly_on_sigterm(["train"])
+        threading.Thread(target=terminate_when_ready, daemon=True).start()
+        with pytest.raises(Terminated) as raised:
+            launch([sys.executable, "-c", child], 2)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert raised.value.code == 143 and caught.read_text() == "SIGTERM "
 
 
 # --- two CPU ranks (gloo) ----------------------------------------------------------------------------------

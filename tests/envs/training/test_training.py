@@ -25,6 +25,7 @@ from ocean_warp.envs.training.train_loop import (
     main,
     train,
 )
+from ocean_warp.termination import Terminated
 
 
 
@@ -307,3 +308,38 @@ def test_multi_gpu_benchmark_table_without_a_one_gpu_run():
     both = format_table([row(1, 2.0e5), row(2, 3.6e5)], **settings)
     assert "| 200,000 | 1.00x | 100% |" in both and "| 360,000 | 1.80x | 90% |" in both
     assert "n/a" not in both and "nan" not in both.lower()
+
+
+@pytest.mark.parametrize("interruption", [KeyboardInterrupt, Terminated])
+def test_an_interrupted_run_saves_its_last_completed_iteration(interruption, tmp_path, monkeypatch, capsys,
+                                                               one_torch_thread):
+    """Ctrl-C (or SIGTERM) while iteration 3 starts, far from a checkpoint (interval 50): model_2.pt and
+    policy.pt are written, and they hold what an uninterrupted 3-iteration run ends with."""
+    config = small_config(quick_task(episode_time=6.0), steps_per_env=4, save_interval=50)
+    straight = train(config, seed=4, placement=Placement(num_envs=8), length=TrainLength(iterations=3),
+                     output=RunOutput(run_dir=str(tmp_path / "straight"), progress=False))
+    prepare = Training.prepare
+
+    def prepare_until_interrupted(self, iteration):
+        if iteration == 3:
+            raise interruption()
+        prepare(self, iteration)
+
+    monkeypatch.setattr(Training, "prepare", prepare_until_interrupted)
+    run_dir = tmp_path / "interrupted"
+    with pytest.raises(interruption):
+        train(config, seed=4, placement=Placement(num_envs=8), length=TrainLength(iterations=10),
+              output=RunOutput(run_dir=str(run_dir), progress=False))
+    assert sorted(p.name for p in run_dir.glob("*.pt")) == ["model_2.pt", "policy.pt"]
+    assert not [p.name for p in run_dir.iterdir() if p.name.startswith(".")]
+    saved, expected = read_checkpoint(run_dir / "model_2.pt"), read_checkpoint(straight.checkpoint)
+    assert saved["iteration"] == 2 and len(saved["history"]) == 3
+    for key in ("actor_state_dict", "critic_state_dict"):
+        for name, tensor in expected[key].items():
+            assert torch.equal(saved[key][name], tensor), (key, name)
+    policy = load_policy(run_dir / "policy.pt")
+    observations = torch.zeros(1, policy.num_obs)
+    assert torch.equal(policy(observations), load_policy(straight.policy)(observations))
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"ocean-warp train: interrupted; iteration 2 saved as {run_dir / 'model_2.pt'} (and policy.pt "
+                   f"beside it); --resume {run_dir / 'model_2.pt'} continues"]

@@ -116,7 +116,7 @@ def test_a_mesh_object_read_from_a_file(device, tmp_path, rng):
     assert hit["kind"][0] == HIT_OBJECT
     assert hit["distance"][0] == pytest.approx(10.0, abs=1e-4)
     np.testing.assert_allclose(hit["normal"][0], axis, atol=1e-4)
-    with pytest.raises(ValueError, match="SceneObject.from_file: cannot read a mesh"):
+    with pytest.raises(FileNotFoundError, match="SceneObject.from_file: no such file"):
         SceneObject.from_file(tmp_path / "missing.obj")
 
 

@@ -266,6 +266,23 @@ def test_a_missing_onnx_package_is_a_one_line_error(tmp_path, capsys, monkeypatc
     assert not (tmp_path / "p.onnx").exists()
 
 
+@needs_onnx
+def test_without_onnxruntime_the_onnx_file_is_checked_by_onnx_reference_evaluator(tmp_path, capsys, monkeypatch):
+    """No onnxruntime: onnx's reference evaluator runs the file before it is written; a file that does not
+    reproduce the policy is refused (nothing written). The file written is then run by the real onnxruntime."""
+    out = tmp_path / "waypoint.onnx"
+    with monkeypatch.context() as patched:
+        patched.setitem(sys.modules, "onnxruntime", None)  # import onnxruntime raises ImportError
+        code, printed, errors = run_job(["--task", "EBoatWaypoint-v0", "--out", out], capsys)
+        assert code == 0 and errors == [] and len(printed) == 1, (printed, errors)
+        assert "onnx's reference evaluator reproduces the torch policy to " in printed[0], printed
+        patched.setattr(policy_export, "TOLERANCE", -1.0)
+        code, printed, errors = run_job(["--task", "EBoatWaypoint-v0", "--out", tmp_path / "refused.onnx"], capsys)
+        assert code == 1 and len(errors) == 1 and "the exported onnx policy differs" in errors[0], errors
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["waypoint.onnx"]
+    assert_reproduces(load_policy(shipped_policy_path("EBoatWaypoint-v0")), OnnxPolicy(out).act, 16, seed=7)
+
+
 def test_an_export_that_does_not_reproduce_is_not_written(tmp_path, capsys, monkeypatch):
     """The check runs on the temporary file: a failing export leaves what was at --out untouched."""
     out = tmp_path / "p.pt"
