@@ -124,9 +124,9 @@ from ..training.policy_io import CheckpointError, Policy, load_policy
 from ..registration import TASK_IDS, make_task_config, task_name
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
-__all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
-           "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "DEFAULT_TASK", "evaluation_task",
-           "mission_task", "sail_mission", "evaluate_mission", "main"]
+__all__ = ["Controller", "PolicyController", "AutopilotController", "FixedController", "FleetController",
+           "RecordedDecision", "RunPath", "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS",
+           "DEFAULT_TASK", "evaluation_task", "mission_task", "sail_mission", "evaluate_mission", "main"]
 
 DEFAULT_TASK = "EBoatMission-v0"
 """The task ``ocean-warp eval`` sails without --task."""
@@ -151,6 +151,20 @@ class Controller(Protocol):
     def reset(self, env: BatchedEnv) -> None: ...
 
     def act(self, env: BatchedEnv) -> None: ...
+
+
+class FixedController:
+    """The same commands for every boat, every decision."""
+
+    def __init__(self, actions, name: str = "fixed"):
+        self.actions = torch.as_tensor(np.asarray(actions, dtype=np.float32)).reshape(1, 3)
+        self.name = name
+
+    def reset(self, env: SailingEnv) -> None:
+        self._actions = self.actions.to(env.torch_device).expand(env.num_envs, 3).contiguous()
+
+    def act(self, env: SailingEnv) -> None:
+        env.buffers.actions.copy_(self._actions)
 
 
 class PolicyController:

@@ -25,9 +25,6 @@ import os
 import sys
 import time
 
-import numpy as np
-import torch
-
 from ocean_warp.cli_support import job_parser, plural, report_error
 from ocean_warp.devices import resolve_device
 from ocean_warp.usd.recorder import TIME_CODES_PER_SECOND
@@ -36,7 +33,7 @@ from ocean_warp.validation import require_in_range, require_positive
 
 from ..sailing_env import SailingEnv
 from .fleet_scenario import FleetScenario, add_scenario_arguments, scenario_arguments, shipped_policy_or_none
-from .evaluation import AutopilotController, PolicyController, RecordedDecision
+from .evaluation import AutopilotController, FixedController, PolicyController, RecordedDecision
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
 
@@ -79,20 +76,6 @@ class ExportConfig(FleetScenario):
         if self.loop_period is not None:
             require_positive(owner, "loop_period", self.loop_period, unit=" [s]")
         require_positive(owner, "time_codes_per_second", self.time_codes_per_second, unit=" [1/s]")
-
-
-class FixedController:
-    """The same commands for every boat, every decision."""
-
-    def __init__(self, actions, name: str = "fixed"):
-        self.actions = torch.as_tensor(np.asarray(actions, dtype=np.float32)).reshape(1, 3)
-        self.name = name
-
-    def reset(self, env: SailingEnv) -> None:
-        self._actions = self.actions.to(env.torch_device).expand(env.num_envs, 3).contiguous()
-
-    def act(self, env: SailingEnv) -> None:
-        env.buffers.actions.copy_(self._actions)
 
 
 def scenario_task(config: ExportConfig, device, observation=None):
