@@ -35,7 +35,7 @@ Written into --out (atomically):
                      run's buoys (orange) and piles (grey) as circles of their true radius at their places
                      from the run's origin, edged in the run's colour
   results.csv        one row per controller (the table printed at the end)
-  runs.csv           one row per run and controller; its "end" is how the first episode ended: done,
+  runs.csv           one row per run and controller; its "end" is how the first episode ended: reached,
                      capsized (BoatStatus.CAPSIZED), collided (BoatStatus.COLLIDED, not capsized), flagged <bits>
                      (other BoatStatus bits), time-out or lost
   trajectories.npz   the paths: <controller>_x, _y [m from the run's origin], _heading [rad], _propeller
@@ -108,7 +108,7 @@ from ocean_warp.cli_support import (
     job_parser,
     plural,
 )
-from ocean_warp.fleet import BoatStatus
+from ocean_warp.fleet import BoatStatus, episode_end
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.kernels.ray_cast import float_objects
 from ocean_warp.replay import ReplayedLaunches
@@ -345,16 +345,11 @@ class ControllerResult:
         return ~self.success & ~self.time_out & (self.status == 0)
 
     def end(self, run: int) -> str:
-        """How run ``run``'s first episode ended, for runs.csv: "capsized", "collided" (touched, not
-        capsized), "flagged <bits>" (another BoatStatus), "time-out", "done" or "lost"."""
-        status = int(self.status[run])
-        if status & BoatStatus.CAPSIZED:
-            return "capsized"
-        if status & BoatStatus.COLLIDED:
-            return "collided"
-        if status:
-            return f"flagged {status}"
-        return "time-out" if self.time_out[run] else "done" if self.success[run] else "lost"
+        """How run ``run``'s first episode ended, for runs.csv (``ocean_warp.fleet.episode_end``): "capsized",
+        "collided" (touched, not capsized), "flagged <bits>" (another BoatStatus), "time-out", "reached" or
+        "lost"."""
+        end = episode_end(bool(self.success[run]), bool(self.time_out[run]), int(self.status[run]))
+        return f"flagged {int(self.status[run])}" if end == "flagged" else end
 
     def summary(self) -> dict:
         """The controller's row of results.csv (``TABLE_COLUMNS``)."""

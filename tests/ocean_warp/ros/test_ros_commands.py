@@ -122,7 +122,9 @@ def test_episode_messages_only_for_the_boats_whose_episode_ended():
     messages = topics.episode_messages(7_000_000_000, [False, True, True], [0, 1, 0], [0, 1, 0], [5, 28, 9],
                                        [0.1, 1.8, -1.2], [0, 0, 4])
     assert [m.topic for m in messages] == ["/eboat_1/mission_control/episode", "/eboat_2/mission_control/episode"]
-    assert messages[0].fields["data"] == pytest.approx([1.0, 1.0, 28.0, 1.8, 0.0])
+    # success, waypoints, decisions, return, flags, end reason (0: reached; 5: lost), boat, time [s]
+    assert messages[0].fields["data"] == pytest.approx([1.0, 1.0, 28.0, 1.8, 0.0, 0.0, 1.0, 7.0])
+    assert messages[1].fields["data"] == pytest.approx([0.0, 0.0, 9.0, -1.2, 4.0, 3.0, 2.0, 7.0])  # 4: flagged
     assert messages[1].fields["layout"]["dim"][0]["label"] == "episode_end"
     assert topics.episode_messages(0, [True], [1], [1], [3], [1.0], [0])[0].topic == "/eboat/mission_control/episode"
 
