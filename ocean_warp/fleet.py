@@ -28,7 +28,8 @@ from .kernels.spatial import vec6
 from .torch_streams import ordered_with_torch
 from .validation import require_indices, require_rows
 
-__all__ = ["Fleet", "FleetModel", "FleetState", "FleetControl", "FleetForces", "FleetTensors", "BoatStatus"]
+__all__ = ["Fleet", "FleetModel", "FleetState", "FleetControl", "FleetForces", "FleetTensors", "BoatStatus",
+           "END_REASONS", "episode_end"]
 
 
 class BoatStatus:
@@ -47,6 +48,26 @@ class BoatStatus:
     set together with NONFINITE, so the boat is frozen too."""
     COLLIDED = int(STATUS_COLLIDED)
     """Touched an object or another boat of its environment (``ocean_warp.contact.Contact``)."""
+
+
+END_REASONS = ("reached", "capsized", "collided", "flagged", "time-out", "lost")
+"""How an episode can end (:func:`episode_end`), in the order of their codes (``ocean-warp ros``'s
+``mission_control/episode`` carries the index)."""
+
+
+def episode_end(success: bool, time_out: bool, status: int) -> str:
+    """How an episode ended, one of :data:`END_REASONS`: "capsized" (``BoatStatus.CAPSIZED``), "collided"
+    (``BoatStatus.COLLIDED``, not capsized), "flagged" (another ``BoatStatus`` bit), "time-out" (the task's time
+    limit), "reached" (every waypoint of the task), else "lost" (healthy, before the time limit, without
+    finishing: the task ends an episode when the boat is beyond its lost distance)."""
+    status = int(status)
+    if status & BoatStatus.CAPSIZED:
+        return "capsized"
+    if status & BoatStatus.COLLIDED:
+        return "collided"
+    if status:
+        return "flagged"
+    return "time-out" if time_out else "reached" if success else "lost"
 
 
 class FleetTensors(NamedTuple):

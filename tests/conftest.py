@@ -1,21 +1,26 @@
-"""Test devices and fresh random numbers.
+"""Test devices and replayable random numbers.
 
 Every test that takes ``device`` runs on "cpu" and, where Warp sees a GPU, on "cuda:0" too.
 ``pytest --device cpu`` (or ``cuda``) restricts the run to one of them.
+The ``rng`` fixture draws from a per-session base seed (``--rng-seed N`` or ``$OCEAN_WARP_TEST_SEED`` to replay
+one; tests/rng_seed.py).
 """
 
 import logging
 
-import numpy as np
 import pytest
 import torch
 import warp as wp
+
+from tests import rng_seed
+from tests.rng_seed import pytest_configure, pytest_report_header, pytest_runtest_makereport, rng  # noqa: F401
 
 wp.config.log_level = logging.WARNING  # no module-load chatter in test logs
 wp.init()
 
 
 def pytest_addoption(parser):
+    rng_seed.pytest_addoption(parser)
     parser.addoption(
         "--device",
         action="store",
@@ -40,14 +45,6 @@ def pytest_generate_tests(metafunc):
         if not devices:
             pytest.skip("no CUDA device for --device cuda")
         metafunc.parametrize("device", devices)
-
-
-@pytest.fixture
-def rng(request):
-    """A numpy Generator with a fresh seed per test; the seed is printed when the test fails."""
-    seed = int(np.random.SeedSequence().generate_state(1)[0])
-    print(f"rng seed for {request.node.name}: {seed}")
-    return np.random.default_rng(seed)
 
 
 @pytest.fixture

@@ -35,7 +35,7 @@ Written into --out (atomically):
                      run's buoys (orange) and piles (grey) as circles of their true radius at their places
                      from the run's origin, edged in the run's colour
   results.csv        one row per controller (the table printed at the end)
-  runs.csv           one row per run and controller; its "end" is how the first episode ended: done,
+  runs.csv           one row per run and controller; its "end" is how the first episode ended: reached,
                      capsized (BoatStatus.CAPSIZED), collided (BoatStatus.COLLIDED, not capsized), flagged <bits>
                      (other BoatStatus bits), time-out or lost
   trajectories.npz   the paths: <controller>_x, _y [m from the run's origin], _heading [rad], _propeller
@@ -107,7 +107,7 @@ from ocean_warp.cli_support import (
     finite_at_least,
     plural,
 )
-from ocean_warp.fleet import BoatStatus
+from ocean_warp.fleet import BoatStatus, episode_end
 from ocean_warp.frames import roll_pitch_yaw
 from ocean_warp.kernels.ray_cast import float_objects
 from ocean_warp.ocean_config import (SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_significant_wave_height,
@@ -127,9 +127,9 @@ from ..registration import DEFAULT_TASK, make_task_config, task_name
 from ..tasks.task_kernels import POLICY_OBS
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
-__all__ = ["Controller", "PolicyController", "AutopilotController", "FleetController", "RecordedDecision", "RunPath",
-           "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS", "DEFAULT_TASK", "evaluation_task",
-           "mission_task", "sail_mission", "evaluate_mission", "main"]
+__all__ = ["Controller", "PolicyController", "AutopilotController", "FixedController", "FleetController",
+           "RecordedDecision", "RunPath", "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS",
+           "DEFAULT_TASK", "evaluation_task", "mission_task", "sail_mission", "evaluate_mission", "main"]
 
 
 TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
@@ -172,6 +172,20 @@ def observation_mismatch(policy: Policy, observation, num_obs: int) -> str | Non
     return (f"the policy (trained on {policy.task}) reads {observation_text(policy.observation, policy.num_obs)}, "
             f"the task gives {observation_text(given, num_obs)}: sail it on {policy.task}, or pass a policy "
             "trained for this task")
+
+
+class FixedController:
+    """The same commands for every boat, every decision."""
+
+    def __init__(self, actions, name: str = "fixed"):
+        self.actions = torch.as_tensor(np.asarray(actions, dtype=np.float32)).reshape(1, 3)
+        self.name = name
+
+    def reset(self, env: SailingEnv) -> None:
+        self._actions = self.actions.to(env.torch_device).expand(env.num_envs, 3).contiguous()
+
+    def act(self, env: SailingEnv) -> None:
+        env.buffers.actions.copy_(self._actions)
 
 
 class PolicyController:
@@ -350,16 +364,11 @@ class ControllerResult:
         return ~self.success & ~self.time_out & (self.status == 0)
 
     def end(self, run: int) -> str:
-        """How run ``run``'s first episode ended, for runs.csv: "capsized", "collided" (touched, not
-        capsized), "flagged <bits>" (another BoatStatus), "time-out", "done" or "lost"."""
-        status = int(self.status[run])
-        if status & BoatStatus.CAPSIZED:
-            return "capsized"
-        if status & BoatStatus.COLLIDED:
-            return "collided"
-        if status:
-            return f"flagged {status}"
-        return "time-out" if self.time_out[run] else "done" if self.success[run] else "lost"
+        """How run ``run``'s first episode ended, for runs.csv (``ocean_warp.fleet.episode_end``): "capsized",
+        "collided" (touched, not capsized), "flagged <bits>" (another BoatStatus), "time-out", "reached" or
+        "lost"."""
+        end = episode_end(bool(self.success[run]), bool(self.time_out[run]), int(self.status[run]))
+        return f"flagged {int(self.status[run])}" if end == "flagged" else end
 
     def summary(self) -> dict:
         """The controller's row of results.csv (``TABLE_COLUMNS``)."""

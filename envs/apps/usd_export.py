@@ -25,33 +25,18 @@ import os
 import sys
 import time
 
-import numpy as np
-import torch
-
 from ocean_warp.cli_support import checked_device, checked_output_file, plural, report_error
 from ocean_warp.usd.stage_file import check_stage_path
 
 from ..sailing_env import SailingEnv
 from .fleet_scenario import scenario_arguments, shipped_policy_or_none
 from .usd_export_options import ExportConfig, parser as _parser
-from .evaluation import AutopilotController, PolicyController, RecordedDecision, warn_other_task
+from .evaluation import AutopilotController, FixedController, PolicyController, RecordedDecision, warn_other_task
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
 
 __all__ = ["ExportConfig", "FixedController", "export_scenario", "main"]
 
-class FixedController:
-    """The same commands for every boat, every decision."""
-
-    def __init__(self, actions, name: str = "fixed"):
-        self.actions = torch.as_tensor(np.asarray(actions, dtype=np.float32)).reshape(1, 3)
-        self.name = name
-
-    def reset(self, env: SailingEnv) -> None:
-        self._actions = self.actions.to(env.torch_device).expand(env.num_envs, 3).contiguous()
-
-    def act(self, env: SailingEnv) -> None:
-        env.buffers.actions.copy_(self._actions)
 
 
 def scenario_task(config: ExportConfig, device, observation=None):

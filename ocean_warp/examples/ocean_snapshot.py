@@ -24,7 +24,6 @@ from ocean_warp.cli_support import (
     checked_device,
     checked_output_folder,
     finite_above,
-    finite_at_least,
 )
 from ocean_warp.ocean_config import (MAX_RESOLUTION, MIN_RESOLUTION, SIGNIFICANT_WAVE_HEIGHT_RULE,
                                     is_valid_significant_wave_height)

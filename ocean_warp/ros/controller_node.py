@@ -41,7 +41,8 @@ import numpy as np
 
 __all__ = ["SEED_POLICY_OBS", "DEFAULT_LOST_DISTANCE", "policy_observation", "commands_from_actions", "main"]
 
-PROG = "ocean-warp controller"
+PROG = "controller_node.py"
+"""The name in its usage and messages: the file is run by its path (no ``ocean-warp`` job runs it)."""
 SEED_POLICY_OBS = 5
 """Values of the seed observation set."""
 SEED_RAW_VALUES = 9

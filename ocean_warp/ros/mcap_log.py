@@ -32,7 +32,7 @@ import os
 
 from .geodesy import GUANABARA_BAY, GeodeticDatum
 from .message_definitions import schema_text
-from .topics import (Message, boat_namespace, camera_messages, clock_message, command_messages, env_lidar,
+from .topics import (CLOCK, Message, boat_namespace, camera_messages, clock_message, command_messages, env_lidar,
                      lidar_messages, snapshot, state_messages, static_messages)
 
 __all__ = ["McapRecorder", "check_record_path", "MCAP_INSTALL_HINT"]
@@ -109,13 +109,14 @@ class McapRecorder:
         """Messages written so far."""
 
     # --- recording -------------------------------------------------------------------------------------
-    def record(self, env, *, prefix: str = "", lidar=None, camera=None) -> None:
+    def record(self, env, *, prefix: str = "", lidar=None, camera=None, time_offset_ns: int = 0) -> None:
         """Log ``env``'s boats now (once after the reset, then once after each decision), under ``prefix`` (""
         or an absolute ROS name: ``/autopilot`` puts boat i under ``/autopilot/eboat_i``). ``lidar``: a
         :class:`~ocean_warp.perception.Lidar` or :class:`~ocean_warp.perception.LidarHook` to log instead of the
         env's own (its task's lidar, logged by default); ``camera``: a :class:`~ocean_warp.perception.CameraHook`
         (logged after each decision in which it rendered) or a :class:`~ocean_warp.perception.Camera` (after
-        each decision)."""
+        each decision). ``time_offset_ns`` [ns] is added to the simulator's clock (a node that resets its env
+        passes what keeps the log's time running on)."""
         if not self._open:
             raise ValueError(f"McapRecorder.record: the log {self.path!r} is closed")
         if not hasattr(env, "simulator") or not hasattr(env, "target_world"):
@@ -123,12 +124,9 @@ class McapRecorder:
                              f"got {type(env).__name__}")
         boat_namespace(0, env.num_envs, prefix)  # checks the prefix
         tap = self._tap(env)
-        state = snapshot(env)
+        state = snapshot(env, time_offset_ns)
         t = state.time_ns
-        messages: list[Message] = []
-        if t > self._clock_ns:
-            messages.append(clock_message(t))
-            self._clock_ns = t
+        messages: list[Message] = [clock_message(t)]  # written where the time passed the last /clock (write)
         lidar, scan_time = self._lidar(env, lidar)
         camera, camera_due = _camera(camera)
         static = static_messages(env.num_envs, t, prefix=prefix,
@@ -144,7 +142,7 @@ class McapRecorder:
         decided = False
         started, rudder, sheet, propeller = tap.read()
         if started == started:  # not NaN: a decision was seen
-            start_ns = int(round(started * 1e9))
+            start_ns = int(round(started * 1e9)) + int(time_offset_ns)
             period_ns = int(round(env.decision_period * 1e9))
             decided = abs(start_ns + period_ns - t) <= _DECISION_TOLERANCE_NS
             if decided and self._last_commands.get(prefix) != start_ns:
@@ -154,7 +152,19 @@ class McapRecorder:
             messages += lidar_messages(lidar, t, scan_time=scan_time, prefix=prefix)
         if camera is not None and decided and camera_due:
             messages += camera_messages(camera, env.num_envs, t, prefix=prefix)
+        self.write(messages)
+
+    def write(self, messages) -> None:
+        """Log ``messages`` (:class:`~ocean_warp.ros.topics.Message`: a node's episode ends, its /clock between
+        decisions) as they are; a /clock not past the last one written is left out (the log's clock never
+        runs back)."""
+        if not self._open:
+            raise ValueError(f"McapRecorder.write: the log {self.path!r} is closed")
         for message in messages:
+            if message.topic == CLOCK:
+                if message.time_ns <= self._clock_ns:
+                    continue
+                self._clock_ns = message.time_ns
             self._write(message)
 
     def _tap(self, env):

@@ -8,8 +8,11 @@
     ocean-warp ros /eboat/gps/fix:=/fix                  # rospy's remapping arguments
 
 One boat sails under /eboat (the seed twin's namespace), several under /eboat_0, /eboat_1, ... The simulated
-time is published on /clock (the node sets /use_sim_time true while it runs). Once per decision (every 1 s
-of simulated time in every task; at --rate-factor times real time) each boat publishes:
+time is published on /clock (the node sets /use_sim_time true while it runs) at every decision and, between
+decisions, every 1/--clock-hz s of simulated time (default 20 Hz; spread over the wall time of each decision at
+a rate factor, all at once before each decision when sailing as fast as possible or in lockstep), so sim-time
+timers tick evenly. Once per decision (every 1 s of simulated time in every task; at --rate-factor times real
+time) each boat publishes:
 
   mission_control/observations  std_msgs/Float32MultiArray  the seed's 9 values (distance [m], bearing [deg],
                                                             speed [m/s], apparent wind [m/s, deg], boom,
@@ -21,14 +24,17 @@ of simulated time in every task; at --rate-factor times real time) each boat pub
   lidar/scan                    sensor_msgs/LaserScan       with a lidar (the avoidance tasks, or --lidar)
   camera/image_raw, camera/camera_info, camera/depth/...    with --camera
   mission_control/episode       std_msgs/Float32MultiArray  when an episode ends: success, waypoints,
-                                                            decisions, return, status flags
+                                                            decisions, return, status flags, end reason
+                                                            (0 reached, 1 capsized, 2 collided, 3 flagged,
+                                                            4 time-out, 5 lost), boat, time [s]
 
 and /tf (odom -> base_link of every boat), /tf_static (latched: map -> odom, sensor mounts). It subscribes to
 each boat's control_interface/sail (Float32, sheet: largest boom angle 0 to 90 deg), control_interface/rudder
 (Float32, -60 to 60 deg, positive to port), control_interface/propulsion (Int16, level -5 to 5) and
 atmosferic_control/wind (Point, sets the boat's mean true wind [m/s], ENU; the node's own messages on it are
 ignored). A command holds until the next; one that is NaN, infinite or out of range is ignored with a warning.
-The service ~reset (/ocean_warp/reset, std_srvs/Trigger) restarts every boat from --seed and the clock from 0.
+The service ~reset (/ocean_warp/reset, std_srvs/Trigger) restarts every boat from --seed; the clock goes on
+(one decision after the last time published: it never runs back, in the --record log neither).
 Without a ROS master (ROS 1) the node exits at once with one line (status 2); ROS 2 has no master to
 check (rospy-style remaps become --ros-args -r from:=to there, and the service is ~/reset). Ctrl-C (or
 SIGTERM) stops it cleanly and finishes the --record file. ocean_warp.ros.topics says what every topic
@@ -46,20 +52,24 @@ from ocean_warp.cli_support import (check_options, checked_device, checked_outpu
 from ocean_warp.ocean_config import SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_significant_wave_height
 
 from . import ros1
-from .node_options import parser as _parser
+from .node_options import DEFAULT_CLOCK_HZ, MAX_CLOCK_HZ, parser as _parser
 from .node_loop import PROG, RESET_SERVICE, NodeLoop
 from .ros1_bus import Ros1Bus
 from .topics import (BOAT_TOPICS, GLOBAL_TOPICS, NODE_TOPICS, boat_namespace, camera_messages, clock_message, env_lidar,
                      episode_messages, lidar_messages, snapshot, state_messages, static_messages)
 
-__all__ = ["NODE_NAME", "RESET_SERVICE", "main"]
+__all__ = ["DEFAULT_CLOCK_HZ", "NODE_NAME", "RESET_SERVICE", "main"]
 NODE_NAME = "ocean_warp"
+_CLOCK_MARGIN_NS = 1_000
+"""Ticks closer than this [ns] to the next decision are left to it (the simulator's clock sums float64 steps)."""
 
 
 def _check(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
     check_options(parser, (
         ("--boats", args.boats, args.boats >= 1, "a whole number >= 1"),
         ("--rate-factor", args.rate_factor, finite_at_least(args.rate_factor, 0.0), "a finite number >= 0"),
+        ("--clock-hz", args.clock_hz, finite_at_least(args.clock_hz, 0.0) and args.clock_hz <= MAX_CLOCK_HZ,
+         f"a number from 0 to {MAX_CLOCK_HZ:g} [Hz]"),
         ("--duration", args.duration, args.duration is None or finite_above(args.duration, 0.0), "a number > 0 [s]"),
         ("--lockstep-timeout", args.lockstep_timeout, finite_at_least(args.lockstep_timeout, 0.0),
          "a finite number >= 0 [s]"),
@@ -191,6 +201,9 @@ class _Simulation:
     seed: int
     lidar_hook: object = None
     camera_hook: object = None
+    time_offset_ns: int = 0
+    """Added to the simulator's clock in everything published and logged: the time before the last reset plus
+    one decision, so the node's time never runs back."""
 
     @classmethod
     def build(cls, args, task_id: str, device) -> _Simulation:
@@ -219,14 +232,28 @@ class _Simulation:
     def boats(self) -> int:
         return self.env.num_envs
 
+    def clock_ns(self) -> int:
+        """The node's simulated time [ns]: the simulator's clock plus the offset of the resets."""
+        return int(round(float(self.env.simulator.time) * 1e9)) + self.time_offset_ns
+
     def time_s(self) -> float:
-        return float(self.env.simulator.time)
+        """The node's simulated time [s] (:meth:`clock_ns`)."""
+        return self.clock_ns() / 1e9
+
+    def clock_ticks(self, clock_hz: float) -> list:
+        """/clock messages every 1/``clock_hz`` s of simulated time after now and before the next decision
+        (none for ``clock_hz`` 0)."""
+        if clock_hz <= 0.0:
+            return []
+        now, step = self.clock_ns(), round(1e9 / clock_hz)
+        end = now + round(float(self.env.decision_period) * 1e9) - _CLOCK_MARGIN_NS
+        return [clock_message(t) for t in range(now + step, end, step)]
 
     def messages(self, *, with_static: bool) -> list:
         """Every message of the state now: /clock, /tf_static (``with_static``), the state topics and /tf,
         the lidar's scan and the camera's images."""
         env = self.env
-        state = snapshot(env)
+        state = snapshot(env, self.time_offset_ns)
         t = state.time_ns
         lidar, scan_time = self._lidar()
         messages = [clock_message(t)]
@@ -261,8 +288,8 @@ class _Simulation:
         if not done.any():
             return []
         host = lambda tensor: tensor.cpu().numpy()  # noqa: E731
-        return episode_messages(round(self.time_s() * 1e9), done, host(b.final_success), host(b.final_waypoints),
-                                host(b.final_length), host(b.final_return), host(b.final_status))
+        return episode_messages(self.clock_ns(), done, host(b.final_success), host(b.final_waypoints),
+                                host(b.final_length), host(b.final_return), host(b.final_status), host(b.time_out))
 
     def set_wind(self, boat: int, speed: float, direction: float) -> None:
         """Boat ``boat``'s mean true wind: ``speed`` [m/s] blowing towards ``direction`` [rad], its gusts kept."""
@@ -271,4 +298,7 @@ class _Simulation:
         wind.set([boat], speed=speed, direction=direction, gust_scale=gust)
 
     def reset(self) -> None:
+        """Every boat from the seed again; the node's clock goes on one decision after now."""
+        next_ns = self.clock_ns() + round(float(self.env.decision_period) * 1e9)
         self.env.reset(seed=self.seed)
+        self.time_offset_ns = next_ns - int(round(float(self.env.simulator.time) * 1e9))

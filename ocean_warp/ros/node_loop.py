@@ -1,7 +1,7 @@
 """The decision loop of ``ocean-warp ros`` (:mod:`ocean_warp.ros.node`): commands in (rospy's threads write a
-:class:`~ocean_warp.ros.commands.CommandInbox`), pacing at a rate factor or lockstep with the commands, one
-decision, the state out (and into the MCAP log), episode ends, the reset service, a clean stop on SIGINT and
-SIGTERM."""
+:class:`~ocean_warp.ros.commands.CommandInbox`), pacing at a rate factor (with /clock ticks between decisions)
+or lockstep with the commands, one decision, the state out (and into the MCAP log), episode ends (published and
+logged), the reset service (the clock goes on), a clean stop on SIGINT and SIGTERM."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ import time
 from ocean_warp.cli_support import plural
 
 from .commands import COMMAND_TOPICS, WIND_TOPIC, CommandInbox
-from .topics import BOAT_TOPICS, NODE_TOPICS, boat_namespace
+from .topics import BOAT_TOPICS, EPISODE_TOPIC, NODE_TOPICS, boat_namespace, episode_end_reason
 
 __all__ = ["PROG", "RESET_SERVICE", "RESET_WAIT_S", "Throttle", "Pacer", "NodeLoop"]
 
@@ -48,7 +48,8 @@ class Throttle:
 
 class Pacer:
     """Keeps decisions ``period`` [s, wall clock] apart (0: no waiting); after falling a whole period behind it
-    starts again from now (no catching up)."""
+    starts again from now (no catching up). Between decisions it can run actions at fractions of the period
+    (the /clock ticks)."""
 
     def __init__(self, period: float):
         self.period = period
@@ -58,16 +59,28 @@ class Pacer:
     def restart(self) -> None:
         self._next = None
 
-    def wait(self, stop: threading.Event) -> None:
+    def wait(self, stop: threading.Event, between=()) -> None:
+        """Until the next decision is due; ``between``: (fraction of the period, action) pairs in order, each
+        action run when that fraction of the period before the decision's time has passed (all at once without
+        pacing, on the first decision, after a restart or when behind). Returns early once ``stop`` is set."""
         if self.period <= 0.0:
+            for _, action in between:
+                action()
             return
         now = time.monotonic()
         if self._next is None or now - self._next > self.period:
             if self._next is not None:
                 self.behind += 1
             self._next = now
-        elif self._next > now:
-            stop.wait(self._next - now)
+        start = self._next - self.period
+        for fraction, action in between:
+            delay = start + fraction * self.period - time.monotonic()
+            if delay > 0.0 and stop.wait(delay):
+                return
+            action()
+        delay = self._next - time.monotonic()
+        if delay > 0.0:
+            stop.wait(delay)
         self._next += self.period
 
 
@@ -77,6 +90,7 @@ class NodeLoop:
     def __init__(self, sim, bus, args: argparse.Namespace, recorder):
         self.sim, self.bus, self.recorder = sim, bus, recorder
         self.duration = args.duration
+        self.clock_hz = args.clock_hz
         self.lockstep = args.lockstep
         self.lockstep_timeout = math.inf if args.lockstep_timeout == 0 else args.lockstep_timeout
         rate = 0.0 if args.as_fast_as_possible else args.rate_factor
@@ -114,7 +128,8 @@ class NodeLoop:
             self._resets.append(ticket)
         if not ticket["done"].wait(RESET_WAIT_S) or not ticket["ok"]:
             return False, f"the simulator did not reset (stopped, or busy for {RESET_WAIT_S:g} s)"
-        return True, f"every boat restarted from seed {self.sim.seed}; simulated time 0"
+        return True, (f"every boat restarted from seed {self.sim.seed}; the clock goes on at "
+                      f"t = {self.sim.time_s():.1f} s")
 
     def _topic(self, boat: int, topic: str) -> str:
         return f"{boat_namespace(boat, self.sim.boats)}/{topic}"
@@ -137,7 +152,7 @@ class NodeLoop:
                     continue
                 if self.lockstep and not self._wait_for_commands():
                     continue
-                self.pacer.wait(self.stop)
+                self.pacer.wait(self.stop, self._clock_ticks())
                 if self.pacer.behind == 1 and not self._said_behind:
                     self._said_behind = True
                     self.bus.warn(f"{PROG}: cannot keep up with {self.rate_text}: sailing as fast as it can")
@@ -213,18 +228,19 @@ class NodeLoop:
         self._publish(with_static=False)
         if ends:
             self.bus.publish(ends)
+            if self.recorder is not None:
+                self.recorder.write(ends)
             for message in ends:
                 boat = self._boat_of(message.topic)
-                success, waypoints, decisions, total, flags = message.fields["data"]
+                success, waypoints, decisions, total, flags = message.fields["data"][:5]
                 self.episodes += 1
                 self.reached += int(success == 1.0)
                 held = self.inbox.held_wind(boat)
                 if held is not None:
                     sim.set_wind(boat, *held)
-                outcome = "reached the last waypoint" if success == 1.0 else "not reached"
-                self.bus.info(f"{PROG}: {self._topic(boat, 'mission_control/episode')}: episode ended at t = "
-                              f"{sim.time_s():.1f} s: {outcome}, {int(waypoints)} waypoint(s), {int(decisions)} "
-                              f"decisions, return {total:.3f}, status flags {int(flags)}")
+                self.bus.info(f"{PROG}: {self._topic(boat, EPISODE_TOPIC)}: episode ended at t = "
+                              f"{sim.time_s():.1f} s: {episode_end_reason(message)}, {int(waypoints)} waypoint(s), "
+                              f"{int(decisions)} decisions, return {total:.3f}, status flags {int(flags)}")
 
     def _boat_of(self, topic: str) -> int:
         boats = self.sim.boats
@@ -233,16 +249,32 @@ class NodeLoop:
     def _publish(self, *, with_static: bool) -> None:
         self.bus.publish(self.sim.messages(with_static=with_static), latched=self._latched)
         if self.recorder is not None:
-            self.recorder.record(self.sim.env, lidar=self.sim.lidar_hook, camera=self.sim.camera_hook)
+            self.recorder.record(self.sim.env, lidar=self.sim.lidar_hook, camera=self.sim.camera_hook,
+                                 time_offset_ns=self.sim.time_offset_ns)
+
+    def _clock_ticks(self) -> list:
+        """(fraction of the decision period, publish it) for each /clock tick before the next decision."""
+        period_ns = float(self.sim.env.decision_period) * 1e9
+        now = self.sim.clock_ns()
+        return [((tick.time_ns - now) / period_ns, functools.partial(self._tick, tick))
+                for tick in self.sim.clock_ticks(self.clock_hz)]
+
+    def _tick(self, message) -> None:
+        self.bus.publish([message])
+        if self.recorder is not None:
+            self.recorder.write([message])
 
     def _reset(self) -> None:
         with self._reset_lock:
             waiting, self._resets = self._resets, []
+        for _, tick in self._clock_ticks():  # the clock runs on through the reset's decision
+            tick()
         self.sim.reset()
         self.inbox.clear()
         self.pacer.restart()
         self._publish(with_static=False)
-        self.bus.info(f"{PROG}: reset: every boat restarted from seed {self.sim.seed}; simulated time 0")
+        self.bus.info(f"{PROG}: reset: every boat restarted from seed {self.sim.seed}; the clock goes on at "
+                      f"t = {self.sim.time_s():.1f} s")
         for ticket in waiting:
             ticket["ok"] = True
             ticket["done"].set()

@@ -12,7 +12,12 @@ from ocean_warp.envs.registration import DEFAULT_TASK
 
 from .ros1 import split_remaps
 
-__all__ = ["parser", "own_arguments"]
+__all__ = ["DEFAULT_CLOCK_HZ", "MAX_CLOCK_HZ", "parser", "own_arguments"]
+
+DEFAULT_CLOCK_HZ = 20.0
+"""/clock ticks per second of simulated time (between decisions too)."""
+MAX_CLOCK_HZ = 1000.0
+"""The most /clock ticks per simulated second the node offers (one every millisecond)."""
 
 
 def own_arguments(argv: list[str]) -> list[str]:
@@ -43,6 +48,9 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument("--rate-factor", type=float, default=1.0, metavar="F",
                         help="simulated seconds per wall-clock second (1: real time; 0: as fast as possible)")
     parser.add_argument("--as-fast-as-possible", action="store_true", help="no sleeping: --rate-factor 0")
+    parser.add_argument("--clock-hz", type=float, default=DEFAULT_CLOCK_HZ, metavar="HZ",
+                        help="/clock ticks per second of simulated time between decisions (0: only at each "
+                             "decision)")
     parser.add_argument("--duration", type=float, default=None, metavar="SECONDS",
                         help="stop when the simulated clock reaches this [s] (default: run until shut down)")
     parser.add_argument("--lockstep", action="store_true",

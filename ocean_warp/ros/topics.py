@@ -34,13 +34,15 @@ camera/depth/camera_info            sensor_msgs/msg/CameraInfo       the same pi
 ==================================  ===============================  ==============================================
 
 The ROS node (``ocean-warp ros``, :mod:`ocean_warp.ros.node`) also publishes, per boat, ``mission_control/episode``
-(std_msgs/msg/Float32MultiArray, :data:`EPISODE_END`: one message each time an episode ends; not in the logs,
-:data:`NODE_TOPICS`).
+(std_msgs/msg/Float32MultiArray, :data:`EPISODE_END`: one message each time an episode ends, with how it ended;
+in the node's ``--record`` log too, :data:`NODE_TOPICS`).
 
 Shared: ``/tf`` (tf2_msgs/msg/TFMessage: every boat's ``odom`` -> ``base_link``, its true pose), ``/tf_static``
 (``map`` -> each boat's ``odom``, the identity: the simulator's truth has no drift, REP 105; ``base_link`` ->
 ``lidar_link`` and -> ``camera_link`` at the sensors' mounts, ``camera_link`` -> ``camera_optical_frame``) and
-``/clock`` (rosgraph_msgs/msg/Clock: the simulated time, which stamps every message).
+``/clock`` (rosgraph_msgs/msg/Clock: the simulated time, which stamps every message; the node publishes it
+between decisions too, ``--clock-hz``). The time never runs back: the node's reset service restarts the boats,
+and the clock goes on from one decision after the last time published (``time_offset_ns`` of :func:`snapshot`).
 
 Frames (REP 103): ``map`` and ``odom`` are the simulator's world frame, ENU (x east, y north, z up; still water
 at z = 0), ``base_link`` the boat's body frame, FLU (x forward, y to port, z up; the simulator's own), the
@@ -62,6 +64,7 @@ import re
 
 import numpy as np
 
+from ocean_warp.fleet import END_REASONS, episode_end
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 
 from .geodesy import GUANABARA_BAY, GeodeticDatum, enu_to_geodetic
@@ -71,7 +74,7 @@ __all__ = [
     "bus_name",
     "SEED_NAMESPACE", "SEED_OBSERVATION", "BOAT_TOPICS", "TF", "TF_STATIC", "CLOCK", "MAP_FRAME", "Message",
     "BoatSnapshot", "boat_namespace", "frame_id", "snapshot", "stamp", "seed_observation_values",
-    "EPISODE_TOPIC", "NODE_TOPICS", "EPISODE_END", "episode_messages",
+    "EPISODE_TOPIC", "NODE_TOPICS", "EPISODE_END", "episode_messages", "episode_end_reason",
     "state_messages", "command_messages", "lidar_messages", "camera_messages", "static_messages", "clock_message",
     "env_lidar", "TYPES", "FLOAT32", "INT16", "FLOAT32_MULTI_ARRAY", "POINT", "VECTOR3_STAMPED", "NAV_SAT_FIX", "IMU",
     "LASER_SCAN", "IMAGE", "CAMERA_INFO", "TF_MESSAGE", "CLOCK_TYPE",
@@ -129,12 +132,15 @@ def bus_name(topic: str) -> str:
 
 EPISODE_TOPIC = "mission_control/episode"
 NODE_TOPICS = {EPISODE_TOPIC: FLOAT32_MULTI_ARRAY}
-"""Each boat's topics that only the ROS node publishes (not in the MCAP logs), relative to its namespace."""
-EPISODE_END = ("success", "waypoints_reached", "decisions", "return", "status_flags")
+"""Each boat's topics that only the ROS node publishes (and logs with ``--record``), relative to its namespace."""
+EPISODE_END = ("success", "waypoints_reached", "decisions", "return", "status_flags", "end_reason", "boat", "time_s")
 """An episode's end (``mission_control/episode``), in order: 1 where the boat reached its last waypoint, else 0;
 waypoints reached; decisions sailed; the reward summed over the episode; the simulator's status flags at the
-end (0: none; ``ocean_warp.BoatStatus``: capsized, collided, ...). A boat whose episode ended starts the next one
-at once (a new start is drawn)."""
+end (0: none; ``ocean_warp.BoatStatus``: capsized, collided, ...); how it ended, the index of its reason in
+``ocean_warp.fleet.END_REASONS`` (0 reached, 1 capsized, 2 collided, 3 flagged, 4 time-out, 5 lost: beyond
+the lost distance, 125 m from the waypoint in the seed's task); the boat's index; the simulated time of the
+end [s] (the message's clock, as float32). A boat whose episode ended starts the next one at once (a new start
+is drawn)."""
 
 SEED_OBSERVATION = ("distance_m", "bearing_deg", "speed_m_s", "apparent_wind_speed_m_s", "apparent_wind_angle_deg",
                     "boom_angle_deg", "rudder_angle_deg", "propeller_level", "roll_deg")
@@ -234,15 +240,16 @@ class BoatSnapshot:
         return self.position.shape[0]
 
 
-def snapshot(env) -> BoatSnapshot:
+def snapshot(env, time_offset_ns: int = 0) -> BoatSnapshot:
     """The state of ``env`` (a :class:`~ocean_warp.envs.SailingEnv`) now: after ``env.step()`` the boats as the
-    next decision sees them (environments that ended already restarted), at the simulator's clock."""
+    next decision sees them (environments that ended already restarted), at the simulator's clock plus
+    ``time_offset_ns`` (what a log or node adds to keep its time running on across resets)."""
     state = env.simulator.state
     host = lambda array: np.asarray(array.numpy(), dtype=np.float64)  # noqa: E731
     orientation = host(state.orientation)
     orientation /= np.linalg.norm(orientation, axis=1, keepdims=True)
     return BoatSnapshot(
-        time_ns=int(round(float(state.time.numpy()[0]) * 1e9)), position=host(state.position),
+        time_ns=int(round(float(state.time.numpy()[0]) * 1e9)) + int(time_offset_ns), position=host(state.position),
         orientation=orientation, velocity=host(state.velocity), target=host(env.target_world),
         wind_velocity=host(state.wind_velocity), truth=host(state.truth), readings=host(state.readings),
         boom_angle=host(state.boom_angle), rudder_angle=host(state.rudder_angle),
@@ -422,18 +429,27 @@ def clock_message(time_ns: int) -> Message:
     return Message(CLOCK, CLOCK_TYPE, time_ns, {"clock": stamp(time_ns)})
 
 
-def episode_messages(time_ns: int, ended, success, waypoints, decisions, returns, status, *,
+def episode_messages(time_ns: int, ended, success, waypoints, decisions, returns, status, time_out=None, *,
                      prefix: str = "") -> list[Message]:
     """``mission_control/episode`` (:data:`EPISODE_END`) of every boat whose episode ended at ``time_ns``:
     ``ended`` (N,) bool, and per boat (N,) ``success`` (1 or 0), ``waypoints`` reached, ``decisions`` sailed,
-    ``returns`` (the summed reward) and the simulator's ``status`` flags at the end."""
+    ``returns`` (the summed reward), the simulator's ``status`` flags at the end and ``time_out`` (bool, the
+    task's time limit reached; None: none was)."""
     ended = np.asarray(ended, dtype=bool).reshape(-1)
     n, messages = ended.size, []
     columns = [np.asarray(v, dtype=np.float64).reshape(-1) for v in (success, waypoints, decisions, returns, status)]
+    timed_out = np.zeros(n, dtype=bool) if time_out is None else np.asarray(time_out, dtype=bool).reshape(-1)
     for boat in np.flatnonzero(ended):
         ns = boat_namespace(int(boat), n, prefix)
+        reason = episode_end(columns[0][boat] == 1.0, bool(timed_out[boat]), int(columns[4][boat]))
         messages.append(Message(f"{ns}/{EPISODE_TOPIC}", FLOAT32_MULTI_ARRAY, time_ns, {
             "layout": {"dim": [{"label": "episode_end", "size": len(EPISODE_END), "stride": len(EPISODE_END)}],
                        "data_offset": 0},
-            "data": [float(column[boat]) for column in columns]}))
+            "data": [float(column[boat]) for column in columns]
+            + [float(END_REASONS.index(reason)), float(boat), time_ns / 1e9]}))
     return messages
+
+
+def episode_end_reason(message: Message) -> str:
+    """The words of how the episode of a ``mission_control/episode`` message ended (:data:`END_REASONS`)."""
+    return END_REASONS[int(message.fields["data"][EPISODE_END.index("end_reason")])]

@@ -11,10 +11,12 @@ import os
 
 import numpy as np
 import pytest
-from pxr import Usd, UsdGeom
 from scipy.spatial.transform import Rotation
 
-import ocean_warp as ow
+pytest.importorskip("pxr", reason="USD tests need usd-core (pip install usd-core)")
+from pxr import Usd, UsdGeom  # noqa: E402
+
+import ocean_warp as ow  # noqa: E402
 from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
 from ocean_warp.eboat.sheet import BOOM_HEIGHT, HULL_LINK_HEIGHT, MAST_STEP
 from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, record_eboat,

@@ -7,7 +7,9 @@ import dataclasses
 
 import numpy as np
 import pytest
-from pxr import Usd, UsdGeom
+
+pytest.importorskip("pxr", reason="USD tests need usd-core (pip install usd-core)")
+from pxr import Usd, UsdGeom  # noqa: E402
 
 from ocean_warp import cli
 from ocean_warp.envs.apps.demo import DemoConfig, run_demo

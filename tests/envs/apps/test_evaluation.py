@@ -692,8 +692,7 @@ def test_collisions_are_counted_against_a_run_that_hits_a_pile(tmp_path):
     BoatStatus.COLLIDED where its bow meets the pile, long before the time limit; run 1 does not. The
     collisions column counts 1, runs.csv ends run 0 "collided", and the files keep the layout the reset drew
     (the pile where the task puts it), equal to ``buffers.obstacles`` after a reset."""
-    from ocean_warp.envs.apps.evaluation import MissionEvaluation
-    from ocean_warp.envs.apps.usd_export import FixedController
+    from ocean_warp.envs.apps.evaluation import FixedController, MissionEvaluation
     from ocean_warp.fleet import BoatStatus
 
     task = tiny_avoid()

@@ -1,8 +1,9 @@
 """A ROS 1 client for the node's tests, run as its own process (rospy stays out of pytest's): it watches topics
 or sends commands and prints one JSON object. Imports rospy through ``ocean_warp/ros/ros1.py`` loaded by its
-path (no Warp, no torch). Wall-clock waits only: the node rewinds the simulated clock on a reset.
+path (no Warp, no torch). Waits end on what arrives (a count of observations, a span of the simulated clock),
+with wall-clock limits only as hang guards, so a loaded machine makes them slower, never wrong.
 
-    ros_driver.py watch --seconds 3 --topic /clock --topic /eboat/gps/fix ...
+    ros_driver.py watch --clock-span 12 --topic /clock --topic /eboat/gps/fix ...
     ros_driver.py commands --namespace /eboat
 """
 
@@ -63,9 +64,9 @@ def _data(message):
 
 
 def watch(args) -> dict:
-    """Every message of the topics over ``--seconds`` of wall clock (or until the first on ``--until``): per topic,
-    its type, the /clock at arrival, the header stamp (None without one) and, for a Float32MultiArray, its data.
-    Prints {"ready": [...]} once subscribed."""
+    """Every message of the topics until the clock has advanced ``--clock-span`` s of simulated time (or the first
+    on ``--until``; at most ``--seconds`` of wall clock): per topic, its type, the /clock at arrival, the header
+    stamp (None without one) and, for a Float32MultiArray, its data. Prints {"ready": [...]} once subscribed."""
     import rosgraph
 
     master = rosgraph.Master(rospy.get_caller_id())
@@ -91,9 +92,13 @@ def watch(args) -> dict:
     while any(s.get_num_connections() == 0 for s in subscribers) and time.monotonic() < deadline:
         time.sleep(0.05)  # connected to the node's publishers
     print(json.dumps({"ready": sorted(subscribed)}), flush=True)
-    start = time.monotonic()
+    start, first = time.monotonic(), None
     while time.monotonic() - start < args.seconds:
         if args.until and len(seen.get(args.until, ())) >= 1:
+            break
+        if first is None:
+            first = clock.now
+        elif args.clock_span is not None and clock.now - first >= args.clock_span:
             break
         time.sleep(0.05)
     return {"types": types, "ticks": list(clock.ticks), "missing": sorted(set(args.topic) - subscribed),
@@ -117,12 +122,14 @@ def commands(args) -> dict:
         time.sleep(0.05)
     result = {"connected": rudder.get_num_connections() > 0}
 
-    def settle(seconds: float) -> list:
-        mark = len(observed)
-        time.sleep(seconds)
-        return [(t, data[6]) for t, data in observed[mark:]]  # the rudder angle [deg]
+    def settle(count: int) -> list:
+        """The next ``count`` observations' (clock, rudder angle [deg]) (fewer only past the --wait guard)."""
+        mark, limit = len(observed), time.monotonic() + args.wait
+        while len(observed) < mark + count and time.monotonic() < limit:
+            time.sleep(0.02)
+        return [(t, data[6]) for t, data in observed[mark:mark + count]]
 
-    result["before"] = settle(0.5)
+    result["before"] = settle(2)
     rudder.publish(Float32(30.0))
     result["after_30"] = settle(args.settle)
     rudder.publish(Float32(math.nan))
@@ -141,9 +148,10 @@ def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("scenario", choices=("watch", "commands"))
     parser.add_argument("--topic", action="append", default=[])
-    parser.add_argument("--seconds", type=float, default=3.0, help="wall-clock seconds to watch")
-    parser.add_argument("--wait", type=float, default=20.0, help="wall-clock seconds to wait for the node")
-    parser.add_argument("--settle", type=float, default=2.0, help="wall-clock seconds after each command")
+    parser.add_argument("--seconds", type=float, default=120.0, help="watch: wall-clock seconds at most")
+    parser.add_argument("--clock-span", type=float, default=None, help="watch: simulated seconds to watch")
+    parser.add_argument("--wait", type=float, default=60.0, help="wall-clock seconds to wait for the node")
+    parser.add_argument("--settle", type=int, default=4, help="commands: observations to take after each command")
     parser.add_argument("--until", default=None, help="watch: stop at the first message on this topic")
     parser.add_argument("--namespace", default="/eboat")
     parser.add_argument("--reset", default="/ocean_warp/reset")
