@@ -19,6 +19,7 @@ import re
 import shlex
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -122,7 +123,6 @@ def _missing_optional_module(code: str) -> str | None:
 def _cpu_environment() -> dict[str, str]:
     environment = dict(os.environ)
     environment["CUDA_VISIBLE_DEVICES"] = ""  # the blocks pick "cpu" where Warp sees no GPU: as on CI
-    environment["PYTHONPATH"] = os.pathsep.join(filter(None, [str(REPO), environment.get("PYTHONPATH")]))
     return environment
 
 
@@ -206,9 +206,15 @@ def test_command_parsing_on_a_known_text():
 COMMANDS = [command for block in BASH for command in ocean_warp_commands(block.code, block.line)]
 
 
+def _ocean_warp() -> list[str]:
+    """The installed ``ocean-warp`` command of this Python (its module where no script was installed)."""
+    script = Path(sys.executable).with_name("ocean-warp")
+    return [str(script)] if script.is_file() else [sys.executable, "-m", "ocean_warp.cli"]
+
+
 def _help_options(job: str) -> set[str] | None:
     """The options ``ocean-warp <job> --help`` names; None where the job does not exist."""
-    result = subprocess.run([sys.executable, "-m", "ocean_warp.cli", *([job] if job else []), "--help"],
+    result = subprocess.run([*_ocean_warp(), *([job] if job else []), "--help"],
                             env=_cpu_environment(), capture_output=True, text=True, timeout=HANG_GUARD_S)
     if result.returncode != 0:
         return None
