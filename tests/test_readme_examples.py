@@ -46,10 +46,6 @@ OPTIONAL_MODULES = {
 NEEDS_BEHIND_IMPORTS = {"ocean_warp.usd": "pxr"}
 """Imports of ours that need an optional module."""
 
-OPTIONS_NOT_YET_MERGED = {("*", "--help-long"), ("", "--version"), ("train", "--torch-threads"), ("demo", "--policy")}
-"""(job, option) pairs the README names for the command line of the parallel "cli" branch, tolerated until it is
-merged ("*": any job; "": ``ocean-warp`` itself). Empty this set after that merge."""
-
 NOT_RUN = re.compile(r"^<!--\s*not run:\s*(?P<why>.+?)\s*-->\s*$")
 FENCE = re.compile(r"^```(?P<language>\S*)\s*$")
 
@@ -232,7 +228,6 @@ def test_the_bash_blocks_name_jobs_and_options_that_exist():
             wrong.append(f"line {command.line}: no job `ocean-warp {command.job}`")
             continue
         for option in command.options:
-            pending = ("*", option) in OPTIONS_NOT_YET_MERGED or (command.job, option) in OPTIONS_NOT_YET_MERGED
-            if option not in known and not pending:
+            if option not in known:
                 wrong.append(f"line {command.line}: `ocean-warp {command.job}` has no {option}")
     assert not wrong, "README.md's bash blocks:\n" + "\n".join(wrong)

@@ -396,7 +396,10 @@ def test_lidar_sectors_in_the_observation_against_analytic_returns(device, rng):
             t = -half_b - np.sqrt(np.maximum(discriminant, 0.0))
             hit = (discriminant >= 0.0) & (t >= config.min_range) & (t <= config.max_range)
             expected = np.where(hit, np.minimum(expected, t), expected)
-            certain &= np.abs(discriminant) > 1e-3  # grazing beams: float32 may see them either way
+            # Near grazing, t moves by d(disc) / (2 sqrt(disc)), so float32's rounding of the scene's positions
+            # moves such a beam by over 1 mm (seed 3560529043: one beam 1.2 mm off): beams whose half chord
+            # sqrt(disc) is under 0.1 m may read either way
+            certain &= np.abs(discriminant) > 1e-2
         np.testing.assert_allclose(ranges[e][certain], expected[certain], atol=1e-3)
     nearest = ranges.reshape(env.num_envs, SECTORS, -1).min(axis=2) / config.max_range
     policy, critic = b.policy_obs.cpu().numpy(), b.critic_obs.cpu().numpy()
