@@ -52,7 +52,9 @@ def read_mesh_file(owner: str, path: str | os.PathLike):
         first_line = (str(error).strip().splitlines() or [type(error).__name__])[0]
         raise ValueError(f"{not_readable} ({first_line})") from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ValueError(f"{owner}: {path} holds no triangles")
+        # Noise can parse as a text format with no valid line in it: say that it may not be a mesh at all
+        raise ValueError(f"{owner}: {path} holds no triangles: an empty mesh, or not a valid {extension.upper()} "
+                         "file")
     bad = ~np.all(np.isfinite(np.asarray(mesh.vertices)), axis=1)
     if bad.any():
         first = ", ".join(f"{value:g}" for value in np.asarray(mesh.vertices)[np.flatnonzero(bad)[0]])

@@ -5,6 +5,7 @@ checked before any work, Ctrl-C during the start-up imports, and train's ``--tor
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import os
 import subprocess
 import sys
@@ -111,10 +112,12 @@ def test_train_takes_a_prefixed_task_and_writes_under_out_train():
 
 # --- output paths, checked before any work ---------------------------------------------------------
 
+NEEDS_PXR = pytest.mark.skipif(importlib.util.find_spec("pxr") is None, reason="export-usd needs usd-core (pxr)")
+
 FOLDER_OUTPUTS = [("eval", "--out"), ("demo", "--out"), ("ocean", "--out"), ("polar", "--out"),
                   ("drop-hulls", "--out"), ("train", "--runs-root")]
 """Jobs that write into a folder, and the option that names it."""
-FILE_OUTPUTS = [("export-usd", "--out", "stage.usdc"), ("render", "--out", "video.gif"),
+FILE_OUTPUTS = [pytest.param("export-usd", "--out", "stage.usdc", marks=NEEDS_PXR), ("render", "--out", "video.gif"),
                 ("export-policy", "--out", "policy.onnx")]
 """Jobs that write one file, the option that names it and a name it takes."""
 

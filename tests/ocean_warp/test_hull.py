@@ -93,8 +93,11 @@ def test_a_folder_is_not_a_mesh_file(tmp_path):
 def test_random_bytes_are_not_a_mesh(tmp_path, rng, suffix):
     path = tmp_path / f"noise.{suffix}"
     path.write_bytes(rng.bytes(512))
-    with pytest.raises(ValueError, match=rf"^Hull.from_file: {path} is not a mesh of a readable format "
-                                         r"\(OBJ, STL, PLY, OFF, GLB, GLTF\)") as raised:
+    # Depending on the bytes, trimesh's parser raises (most draws) or reads them as a text file with no valid
+    # line (some OBJ and STL draws): either is one line naming the file and its format
+    with pytest.raises(ValueError, match=rf"^Hull.from_file: {path} (is not a mesh of a readable format "
+                                         r"\(OBJ, STL, PLY, OFF, GLB, GLTF\)|holds no triangles: an empty mesh, or "
+                                         rf"not a valid {suffix.upper()} file)") as raised:
         ow.Hull.from_file(path)
     assert "charset_normalizer" not in str(raised.value) and "\n" not in str(raised.value)
     other = tmp_path / "noise.bin"

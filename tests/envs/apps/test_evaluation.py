@@ -558,7 +558,8 @@ def test_cli_runs_every_task(task_id, tmp_path, capsys):
     """``eval --task ID`` for every registered id (with and without the prefix): 1 run of 2 s per controller,
     the task's shipped policy where it has one, else the autopilot alone, said in one line."""
     name = task_id.removeprefix("ocean_warp/")
-    assert main(["--task", task_id, "--runs", "1", "--time-limit", "2", "--out", str(tmp_path), "--no-progress"]) == 0
+    assert main(["--task", task_id, "--runs", "1", "--time-limit", "2", "--out", str(tmp_path), "--no-progress",
+                 "--device", "cpu"]) == 0  # compared below with a CPU environment
     out = capsys.readouterr().out
     assert (f"no policy is shipped for {name}" in out) == (name not in SHIPPED)
     header, rows = read_csv(tmp_path / "results.csv")

@@ -191,9 +191,15 @@ def test_ctrl_c_is_passed_to_torchrun_and_raised_once_it_has_exited(tmp_path):
             time.sleep(0.02)
         os.kill(os.getpid(), signal.SIGINT)
 
-    threading.Thread(target=interrupt_when_ready, daemon=True).start()
-    with pytest.raises(KeyboardInterrupt):
-        launch([sys.executable, "-c", child], 2)
+    # A job started in the background by a shell without job control (nohup, CI runners) begins with SIGINT
+    # ignored, and Python then installs no KeyboardInterrupt handler: give this test the one a terminal gives
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        threading.Thread(target=interrupt_when_ready, daemon=True).start()
+        with pytest.raises(KeyboardInterrupt):
+            launch([sys.executable, "-c", child], 2)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert caught.read_text() == "SIGINT "  # forwarded (the child would otherwise sleep its 60 s and write nothing)
 
 
