@@ -20,7 +20,8 @@ from typing import NoReturn
 
 from .devices import DEVICE_FORMS, resolve_device
 
-__all__ = ["COMMAND", "HelpFormatter", "RawDescriptionHelpFormatter", "JobArgumentParser", "job_parser", "error_text", "fail",
+__all__ = ["COMMAND", "HelpFormatter", "RawDescriptionHelpFormatter", "JobArgumentParser", "job_parser",
+           "error_text", "fail",
            "report_error", "option_problem", "check_options", "finite_at_least",
            "finite_above", "add_device_argument", "checked_device", "made_folder", "checked_output_folder",
            "checked_output_file", "plain_text", "module_docstring", "plural"]

@@ -213,10 +213,10 @@ class Ocean:
 
     def set_significant_wave_height(self, hs: float) -> None:
         """Change the sea state to a significant wave height of ``hs`` [m] (0 to
-        ``MAX_SIGNIFICANT_WAVE_HEIGHT``; 0 gives a flat sea), keeping its shape: the same spectrum shape, peak period, directions and phases, with every
-        complex amplitude times ``hs / Hs0``, Hs0 the config's spectral Hs (see
-        :attr:`spectrum_significant_wave_height`). So every field is exactly that multiple of the
-        config's sea at the same time, and ``hs`` means what ``OceanConfig.significant_wave_height``
+        ``MAX_SIGNIFICANT_WAVE_HEIGHT``; 0 gives a flat sea), keeping its shape: the same spectrum shape, peak
+        period, directions and phases, with every complex amplitude times ``hs / Hs0``, Hs0 the config's
+        spectral Hs (see :attr:`spectrum_significant_wave_height`). So every field is exactly that multiple of
+        the config's sea at the same time, and ``hs`` means what ``OceanConfig.significant_wave_height``
         means (the grid holds a little less, see :attr:`significant_wave_height`).
 
         For domain randomisation between rollouts (one sea per ocean; every boat on it shares it). The

@@ -109,7 +109,8 @@ def _missing_optional_module(code: str) -> str | None:
     needed = set()
     for module in _imported_modules(code):
         needed.add(module.split(".")[0])
-        needed.update(need for ours, need in NEEDS_BEHIND_IMPORTS.items() if module == ours or module.startswith(ours + "."))
+        needed.update(need for ours, need in NEEDS_BEHIND_IMPORTS.items()
+                      if module == ours or module.startswith(ours + "."))
     for module in sorted(needed & OPTIONAL_MODULES.keys()):
         if importlib.util.find_spec(module) is None:
             return f"{module} is missing: {OPTIONAL_MODULES[module]}"

@@ -92,5 +92,6 @@ def parser() -> argparse.ArgumentParser:
                         help="the stage's time codes (frames) per second of playback, e.g. 24 or 30: one simulated "
                         "second plays in one second (--fps is how many frames are recorded per second)")
     parser.add_argument("--usda", action="store_true", help="text (.usda) instead of crate (.usdc)")
-    parser.add_argument("--out", default="out/export-usd/scenario.usdc", help="the stage to write: .usdc, .usda or .usd")
+    parser.add_argument("--out", default="out/export-usd/scenario.usdc",
+                        help="the stage to write: .usdc, .usda or .usd")
     return parser

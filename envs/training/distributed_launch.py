@@ -87,7 +87,8 @@ def describe_failure(output: str, status: int, gpus: int) -> str:
 def launch(command: list[str], gpus: int, *, grace_s: float = 60.0) -> int:
     """Run ``command`` (:func:`torchrun_command`), its output passed through; on a non-zero exit print one
     line (:func:`describe_failure`) to stderr. Ctrl-C (SIGTERM) is forwarded to torchrun as SIGINT (SIGTERM),
-    which stops the ranks (rank 0 saves its last iteration), then re-raised once it has exited (after ``grace_s`` it is terminated). Returns torchrun's status."""
+    which stops the ranks (rank 0 saves its last iteration), then re-raised once it has exited (after ``grace_s``
+    it is terminated). Returns torchrun's status."""
     env = dict(os.environ)
     env.setdefault("OMP_NUM_THREADS", "1")  # what torchrun would set, without its warning banner
     # Its own session: a terminal's Ctrl-C reaches this process only, which forwards it exactly once.

@@ -8,10 +8,10 @@ checkpoints that resume bit for bit, a sea-state curriculum, and the exported po
     ocean-warp train --task EBoatMission-v0 --gpus 2 --minutes 5          # 2 GPUs, 4096 envs on each
     torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --device cpu ...   # 2 CPU processes
 
-A run writes into ``out/train/<task>/<date>_<name>/`` (``--runs-root``, default ``out/train``): ``config.json`` (the resolved config),
-rsl-rl's TensorBoard events, ``progress.csv`` (one row per iteration, rewritten after each),
-``model_<it>.pt`` every
-``save_interval`` iterations and at the end, and ``policy.pt`` (the actor alone, kilobytes).
+A run writes into ``out/train/<task>/<date>_<name>/`` (``--runs-root``, default ``out/train``):
+``config.json`` (the resolved config), rsl-rl's TensorBoard events, ``progress.csv`` (one row per iteration,
+rewritten after each), ``model_<it>.pt`` every ``save_interval`` iterations and at the end, and ``policy.pt``
+(the actor alone, kilobytes).
 
 The loop is rsl-rl's ``OnPolicyRunner.learn`` with three additions between iterations: the
 curriculum's sea state, a seeded reset of every environment at each multiple of ``save_interval``

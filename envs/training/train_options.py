@@ -20,7 +20,8 @@ RUNS_ROOT = "out/train"
 def parser() -> argparse.ArgumentParser:
     """The parser of ``ocean-warp train``."""
     parser = job_parser("train", "Train a sailing policy with rsl-rl PPO: a progress bar, TensorBoard logs, atomic "
-                        "checkpoints and the exported policy.pt, in a run folder <task>/<date>_<name>/ under --runs-root.",
+                        "checkpoints and the exported policy.pt, in a run folder <task>/<date>_<name>/ under "
+                        "--runs-root.",
                         long_help_from="ocean_warp.envs.training.train_loop",
                         examples=("ocean-warp train --minutes 20",
                                   "ocean-warp train --task EBoatWaypoint-v0 --device cpu --workers 2 --num-envs 512",

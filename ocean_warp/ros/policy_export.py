@@ -2,7 +2,7 @@
 or TorchScript (libtorch, C++ or Python).
 
     ocean-warp export-policy --task EBoatMission-v0                       # the shipped policy, as ONNX
-    ocean-warp export-policy --policy out/train/EBoatMission-v0/<date>_<name>/policy.pt --out out/export-policy/boat.onnx
+    ocean-warp export-policy --policy out/train/EBoatMission-v0/<run>/policy.pt --out out/export-policy/boat.onnx
     ocean-warp export-policy --task EBoatAvoid-v0 --format torchscript
 
 The exported graph takes the raw observation, float32 (batch, num_obs) with any batch, named "observation",

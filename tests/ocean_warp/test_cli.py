@@ -136,7 +136,8 @@ def test_resolve_device():
     if HAS_GPU:
         assert resolve_device("cuda") == resolve_device(" cuda:0") == "cuda:0"
     for bad in ("gpu", "cuda:", "cuda:-1", "cuda:x", "CPU", ""):
-        with pytest.raises(ValueError, match=r'^device must be "auto" \(.*\), "cpu", "cuda" \(the first GPU\) or "cuda:N"'):
+        with pytest.raises(ValueError,
+                           match=r'^device must be "auto" \(.*\), "cpu", "cuda" \(the first GPU\) or "cuda:N"'):
             resolve_device(bad)
     with pytest.raises(ValueError, match=r"^--device 'cuda:99': "):
         resolve_device("cuda:99", name="--device")

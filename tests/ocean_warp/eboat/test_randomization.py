@@ -236,7 +236,8 @@ def test_significant_wave_height_of_a_wind_sea(device):
 def test_bad_significant_wave_heights_are_refused():
     ocean = ow.Ocean(small_sea(), device="cpu")
     for bad in (-0.1, math.nan, math.inf, True, "1"):
-        with pytest.raises(ValueError, match=r"Ocean.set_significant_wave_height: hs must be a number from 0 to 5 \[m\]"):
+        with pytest.raises(ValueError,
+                           match=r"Ocean.set_significant_wave_height: hs must be a number from 0 to 5 \[m\]"):
             ocean.set_significant_wave_height(bad)
     with pytest.raises(ValueError, match="built with significant_wave_height 0"):
         ow.Ocean(small_sea(significant_wave_height=0.0), device="cpu").set_significant_wave_height(0.5)

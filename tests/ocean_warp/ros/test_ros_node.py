@@ -279,7 +279,8 @@ def test_controller_imports_neither_torch_nor_warp_and_needs_a_master(waypoint_o
 def test_controller_sails_a_waypoint_leg_speaking_only_ros(master, tmp_path, waypoint_onnx):
     reference = _in_process_leg(waypoint_onnx)
     assert reference > 0
-    node = _node(["--task", "EBoatWaypoint-v0", "--lockstep", "--as-fast-as-possible", "--duration", "200"], master, tmp_path)
+    node = _node(["--task", "EBoatWaypoint-v0", "--lockstep", "--as-fast-as-possible", "--duration", "200"], master,
+                 tmp_path)
     watcher = controller = None
     try:
         watcher = subprocess.Popen(
