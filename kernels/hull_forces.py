@@ -25,6 +25,8 @@ from .ocean_surface import (
     surface_height_velocity,
     undisplaced_position,
     undisplaced_position_near,
+    velocity_at_depth,
+    water_below_surface,
 )
 from .spatial import vec6, wrench, wrench_at
 
@@ -41,6 +43,8 @@ __all__ = [
     "sample_origin_water",
     "MAX_HULL_VERTICES",
     "residuary_wrench",
+    "NO_WAVE_HISTORY",
+    "wave_motion_update",
 ]
 
 # Triangles (or clipped pieces) smaller than this [m^2] carry no force: their normal is undefined.
@@ -400,14 +404,34 @@ def slamming_wrench(
 @wp.func
 def sample_vertex_water(surface: OceanSurface, local: wp.vec3, origin: wp.vec3, rotation: wp.quat,
                         origin_shift: wp.vec2) -> wp.vec4:
-    """(depth below the local surface [m], water velocity [m/s] in the body frame) at the hull point
-    ``local`` (body frame) of a boat at ``origin`` turned by ``rotation``. ``origin_shift`` [m] is the
-    choppy displacement at the boat's origin (see :func:`undisplaced_position_near`)."""
+    """(pressure head p / (rho g) [m], positive where submerged, water velocity [m/s] in the body frame) at the
+    hull point ``local`` (body frame) of a boat at ``origin`` turned by ``rotation``: hydrostatic plus the waves'
+    Froude-Krylov head decaying with depth (:func:`water_below_surface`). ``origin_shift`` [m] is the choppy
+    displacement at the boat's origin (see :func:`undisplaced_position_near`)."""
     offset = wp.quat_rotate(rotation, local)
     xy = wp.vec2(origin[0] + offset[0], origin[1] + offset[1])
-    water = height_velocity_at_grid(surface, undisplaced_position_near(surface, xy, origin_shift))
+    q = undisplaced_position_near(surface, xy, origin_shift)
+    water = water_below_surface(surface, q, origin[2] + offset[2], height_velocity_at_grid(surface, q))
     flow = wp.quat_rotate_inv(rotation, wp.vec3(water[1], water[2], water[3]))
-    return wp.vec4(water[0] - (origin[2] + offset[2]), flow[0], flow[1], flow[2])
+    return wp.vec4(water[0], flow[0], flow[1], flow[2])
+
+
+NO_WAVE_HISTORY = wp.constant(3.0e38)
+"""Marks a boat whose wave velocity of the last substep is not known (fresh or reset): no acceleration yet."""
+
+
+@wp.func
+def wave_motion_update(surface: OceanSurface, origin_grid: wp.vec2, substep: float, boat: int,
+                       wave_velocity: wp.array(dtype=wp.vec3), wave_acceleration: wp.array(dtype=wp.vec3)):
+    """The water's orbital velocity at the ocean's middle depth under the boat's origin (world frame [m/s]),
+    and its rate of change along the boat's path since the last substep [m/s^2] (0 without a last one)."""
+    now = velocity_at_depth(surface, origin_grid)
+    before = wave_velocity[boat]
+    acceleration = wp.vec3()
+    if before[0] != NO_WAVE_HISTORY:
+        acceleration = (now - before) / substep
+    wave_velocity[boat] = now
+    wave_acceleration[boat] = acceleration
 
 
 @wp.func
@@ -457,6 +481,8 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
         velocity: wp.array(dtype=vec6),
         swept_rate: wp.array(dtype=float),
         boat_water_velocity: wp.array(dtype=wp.vec3),
+        wave_velocity: wp.array(dtype=wp.vec3),
+        wave_acceleration: wp.array(dtype=wp.vec3),
         wrench: wp.array(dtype=vec6),
     ):
         boat, lane = wp.tid()
@@ -475,6 +501,7 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
         flow_at_origin = wp.quat_rotate_inv(rotation, wp.vec3(origin_water[1], origin_water[2], origin_water[3]))
         if lane == 0:
             boat_water_velocity[boat] = flow_at_origin
+            wave_motion_update(surface, origin_grid, water.substep, boat, wave_velocity, wave_acceleration)
 
         water_at = wp.tile_zeros(shape=(slots,), dtype=wp.vec4, storage="shared")
         for round_index in range(vertex_rounds):

@@ -11,7 +11,15 @@ from __future__ import annotations
 
 import warp as wp
 
-from .ocean_spectrum import FIELD_DISPLACEMENT, FIELD_HEIGHT, FIELD_SLOPE, FIELD_VELOCITY
+from .ocean_spectrum import (
+    FIELD_DISPLACEMENT,
+    FIELD_HEIGHT,
+    FIELD_PRESSURE_LOWER,
+    FIELD_PRESSURE_UPPER,
+    FIELD_SLOPE,
+    FIELD_VELOCITY,
+    FIELD_VELOCITY_BELOW,
+)
 
 __all__ = [
     "OceanSurface",
@@ -20,6 +28,8 @@ __all__ = [
     "undisplaced_position_near",
     "inverted_displacement",
     "height_velocity_at_grid",
+    "water_below_surface",
+    "velocity_at_depth",
     "surface_height",
     "surface_height_velocity",
     "surface_normal",
@@ -44,6 +54,9 @@ class OceanSurface:
     """Most fixed-point iterations of :func:`inverted_displacement` (0 when choppiness is 0)."""
     inversion_tolerance_sq: float
     """Square of the step [m^2] below which :func:`inverted_displacement` stops."""
+    pressure_depths: wp.vec3
+    """Heights z1 > z2 > z3 [m] (negative: below still water) of the pressure-head fields 4 and 5; the
+    velocity field 6 and the vertical velocity of field 5 are at z2."""
 
 
 @wp.func
@@ -108,6 +121,49 @@ def height_velocity_at_grid(surface: OceanSurface, q: wp.vec2) -> wp.vec4:
     height_rate = periodic_bilinear(surface, FIELD_HEIGHT, q)
     horizontal = periodic_bilinear(surface, FIELD_VELOCITY, q)
     return wp.vec4(height_rate[0], horizontal[0], horizontal[1], height_rate[1])
+
+
+@wp.func
+def _between(z: float, z_upper: float, z_lower: float, upper: float, lower: float) -> float:
+    """Linear interpolation at height ``z`` between the values at ``z_upper`` and ``z_lower`` [m]."""
+    return upper + (z - z_upper) / (z_lower - z_upper) * (lower - upper)
+
+
+@wp.func
+def water_below_surface(surface: OceanSurface, q: wp.vec2, z: float, surface_state: wp.vec4) -> wp.vec4:
+    """(pressure head p / (rho g) [m], u, v, w [m/s]) of the water at height ``z`` [m] (world) under the surface
+    particle of grid position ``q``, whose ``surface_state`` is (height, u, v, w) (:func:`height_velocity_at_grid`).
+
+    Above still water the pressure is hydrostatic up to the surface, height - z (negative above it: dry), and
+    the water moves as the surface does. Below it, the pressure head is -z plus the waves' dynamic head, and the
+    velocity the orbital one, both interpolated linearly between the surface (z = 0) and the ocean's depths
+    (``pressure_depths``; the velocity between the surface and z2) and held below the deepest."""
+    if z >= 0.0:
+        return wp.vec4(surface_state[0] - z, surface_state[1], surface_state[2], surface_state[3])
+    levels = surface.pressure_depths
+    upper = periodic_bilinear(surface, FIELD_PRESSURE_UPPER, q)
+    lower = periodic_bilinear(surface, FIELD_PRESSURE_LOWER, q)
+    below = periodic_bilinear(surface, FIELD_VELOCITY_BELOW, q)
+    dynamic = lower[0]
+    if z >= levels[0]:
+        dynamic = _between(z, 0.0, levels[0], surface_state[0], upper[0])
+    elif z >= levels[1]:
+        dynamic = _between(z, levels[0], levels[1], upper[0], upper[1])
+    elif z >= levels[2]:
+        dynamic = _between(z, levels[1], levels[2], upper[1], lower[0])
+    fraction = wp.min(z / levels[1], 1.0)
+    u = surface_state[1] + fraction * (below[0] - surface_state[1])
+    v = surface_state[2] + fraction * (below[1] - surface_state[2])
+    w = surface_state[3] + fraction * (lower[1] - surface_state[3])
+    return wp.vec4(dynamic - z, u, v, w)
+
+
+@wp.func
+def velocity_at_depth(surface: OceanSurface, q: wp.vec2) -> wp.vec3:
+    """The orbital velocity [m/s] (world frame) at the ocean's middle depth z2 under grid position ``q``."""
+    lower = periodic_bilinear(surface, FIELD_PRESSURE_LOWER, q)
+    below = periodic_bilinear(surface, FIELD_VELOCITY_BELOW, q)
+    return wp.vec3(below[0], below[1], lower[1])
 
 
 @wp.func

@@ -5,12 +5,14 @@ x y z w), and Fossen's nu = (u, v, w, p, q, r): the body-frame velocity of the o
 angular velocity [rad/s]. With the water velocity nu_c (the ocean's orbital velocity at the boat, body
 frame) and nu_r = nu - nu_c:
 
-    (M_RB + M_A) dnu/dt = tau - c(nu),   c(nu) = c_RB(nu) + C_A(nu_r) nu_r + D_l nu_r + D_q |nu_r| nu_r
+    (M_RB + M_A) dnu/dt = tau - c(nu) - mu + A_inf a_w,   c(nu) = c_RB(nu) + C_A(nu_r) nu_r + D_l nu_r + D_q |nu_r| nu_r
 
 about the body origin, where c_RB holds the gyroscopic and centre-of-mass coupling terms of the
 Newton-Euler equations, C_A(nu_r) nu_r = (w x a1, v_r x a1 + w x a2) with (a1, a2) = M_A nu_r is the
 added-mass Coriolis (Munk) term, and tau is the hydrodynamic wrench plus gravity and the external
-wrenches. Semi-implicit Euler: the velocity first, then the pose with the new velocity; the
+wrenches. For a hull type with a hydrodynamic database M_A is its infinite-frequency added mass A_inf, mu
+the radiation memory of Cummins' equation and A_inf a_w the diffraction load of the water's acceleration
+a_w (``kernels.radiation``); without one, mu and a_w are absent and M_A is the type's constant added mass. Semi-implicit Euler: the velocity first, then the pose with the new velocity; the
 orientation turns by the exponential map and is renormalised. The velocity terms c(nu) are taken
 linearly implicit at the midpoint, (M + h/2 dc/dnu) dnu = h (tau - c(nu)): an explicit gyroscopic
 term pumps energy into a tumbling body (+1.3 % in 5 s in the Kirchhoff test), a fully implicit one
@@ -21,6 +23,8 @@ from __future__ import annotations
 
 import warp as wp
 
+from .hull_forces import NO_WAVE_HISTORY
+from .radiation import RadiationModel, advance_radiation, diffraction_wrench, radiation_force
 from .spatial import vec6, wrench
 
 __all__ = [
@@ -249,6 +253,10 @@ def integrate_boats(
     wrench_world: wp.array(dtype=vec6),
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
+    radiation: RadiationModel,
+    wave_velocity: wp.array(dtype=wp.vec3),
+    wave_acceleration: wp.array(dtype=wp.vec3),
+    radiation_state: wp.array(dtype=float),
     position: wp.array(dtype=wp.vec3),
     orientation: wp.array(dtype=wp.quat),
     velocity: wp.array(dtype=vec6),
@@ -272,6 +280,10 @@ def integrate_boats(
     force = wp.vec3(external[0], external[1], external[2]) + wp.quat_rotate_inv(rotation, wp.vec3(0.0, 0.0, -mass * gravity))
     moment = wp.vec3(external[3], external[4], external[5]) + wp.cross(r_g, force)
     tau = hydro_wrench[boat] + model_wrench[boat] + wrench(force, moment)
+    seakeeping = radiation.has_database[kind] != 0
+    if seakeeping:
+        tau = (tau - radiation_force(radiation, kind, boat, radiation_state)
+               + diffraction_wrench(radiation, kind, wp.quat_rotate_inv(rotation, wave_acceleration[boat])))
 
     current = water_velocity[boat]
     nu_r = nu - vec6(current[0], current[1], current[2], 0.0, 0.0, 0.0)
@@ -301,6 +313,13 @@ def integrate_boats(
     velocity[boat] = new_nu
     position[boat] = new_position
     orientation[boat] = new_rotation
+    if seakeeping:
+        wave = wave_velocity[boat]
+        if wave[0] == NO_WAVE_HISTORY:
+            wave = wp.vec3()
+        flow = wp.quat_rotate_inv(rotation, wave)
+        advance_radiation(radiation, kind, boat, new_nu - vec6(flow[0], flow[1], flow[2], 0.0, 0.0, 0.0),
+                          radiation_state)
     if wp.quat_rotate(new_rotation, wp.vec3(0.0, 0.0, 1.0))[2] < bounds.min_uprightness:
         flags = flags | STATUS_CAPSIZED
     if new_position[2] > bounds.max_altitude:
@@ -323,9 +342,11 @@ def place_boat(
     wrench_world: wp.array(dtype=vec6),
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
+    wave_velocity: wp.array(dtype=wp.vec3),
 ):
     """Put ``boat`` at the new state; clear its flags, its external wrenches and the water velocity seen
-    at its old place (the next substep samples the new one)."""
+    at its old place, and forget the wave velocity of its last substep (the next substep samples the new
+    place; the water's acceleration starts from there)."""
     position[boat] = new_position
     orientation[boat] = wp.normalize(new_orientation)
     velocity[boat] = new_velocity
@@ -333,6 +354,7 @@ def place_boat(
     wrench_world[boat] = vec6()
     wrench_body[boat] = vec6()
     water_velocity[boat] = wp.vec3()
+    wave_velocity[boat] = wp.vec3(NO_WAVE_HISTORY, 0.0, 0.0)
 
 
 @wp.kernel(enable_backward=False)
@@ -348,6 +370,7 @@ def reset_boats_masked(
     wrench_world: wp.array(dtype=vec6),
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
+    wave_velocity: wp.array(dtype=wp.vec3),
 ):
     """Every boat whose ``mask`` is non-zero to its row of the new state (launch dim: all boats); the
     others are left alone. No index list, so a captured graph can reset whichever boats ended."""
@@ -355,7 +378,7 @@ def reset_boats_masked(
     if mask[boat] == 0:
         return
     place_boat(boat, new_position[boat], new_orientation[boat], new_velocity[boat], position, orientation, velocity,
-               status, wrench_world, wrench_body, water_velocity)
+               status, wrench_world, wrench_body, water_velocity, wave_velocity)
 
 
 @wp.func

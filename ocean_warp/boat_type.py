@@ -64,15 +64,20 @@ class BoatType:
     """Centre of mass in the body frame [m]."""
     inertia: object = None
     """(3, 3) inertia tensor about the centre of mass, body axes [kg m^2]; None: the hull as a uniform solid."""
-    added_mass: object = (0.0,) * 6
-    """Added mass M_A: 6 diagonal values or a symmetric (6, 6) matrix [kg, kg m, kg m^2], constant (as in
-    Fossen's and VRX's models), entering the mass matrix directly."""
+    added_mass: object = None
+    """Added mass M_A: 6 diagonal values or a symmetric (6, 6) matrix [kg, kg m, kg m^2], constant, entering
+    the mass matrix directly. None (default): the infinite-frequency added mass of ``seakeeping`` if given,
+    else zero (a hull with no database keeps a constant added mass, as Fossen's and VRX's models do)."""
     linear_damping: object = (0.0,) * 6
     """Diagonal linear damping on the velocity relative to the water [N s/m, N m s/rad]."""
     quadratic_damping: object = (0.0,) * 6
     """Diagonal quadratic damping, force -d |nu_r| nu_r [N s^2/m^2, N m s^2/rad^2]."""
     astern_surge_factor: float = 1.0
     """Surge damping (linear and quadratic) is this many times larger when moving astern (E-Boat: 1.3)."""
+    seakeeping: object = None
+    """The hull's hydrodynamic database (``ocean_warp.seakeeping.HydroDatabase``): its infinite-frequency added
+    mass is M_A, and the simulator integrates its radiation memory and its diffraction load
+    (``ocean_warp.kernels.radiation``). None: no radiation damping (a constant added mass, drag-only damping)."""
     residuary: ResiduaryResistance | None = None
     """The hull's residuary (wave-making) resistance, applied by the hull pass; None: none (a hull without
     one relies on the per-triangle drag, see ``HydrodynamicsConfig.cross_flow_only``)."""
@@ -99,7 +104,7 @@ class BoatType:
         object.__setattr__(self, "mass", float(mass))
         object.__setattr__(self, "center_of_mass", center)
         object.__setattr__(self, "inertia", inertia)
-        object.__setattr__(self, "added_mass", _six_by_six(owner, "added_mass", self.added_mass))
+        object.__setattr__(self, "added_mass", self._added_mass(owner))
         object.__setattr__(self, "linear_damping", _six_vector(owner, "linear_damping", self.linear_damping))
         object.__setattr__(self, "quadratic_damping", _six_vector(owner, "quadratic_damping", self.quadratic_damping))
         factor = self.astern_surge_factor
@@ -112,6 +117,20 @@ class BoatType:
             raise ValueError(f"{owner}: the mass matrix M_RB + M_A is not positive definite; check added_mass")
         if not self.name:
             object.__setattr__(self, "name", self.hull.name)
+
+    def _added_mass(self, owner: str) -> np.ndarray:
+        """The added mass the mass matrix takes: the one given, or the database's A_inf, or zero."""
+        database = self.seakeeping
+        if database is not None and not (hasattr(database, "added_mass_infinite") and hasattr(database, "radiation")):
+            raise ValueError(f"{owner}.seakeeping must be an ocean_warp.seakeeping.HydroDatabase or None, "
+                             f"got {type(database).__name__}")
+        if self.added_mass is None:
+            return _six_by_six(owner, "added_mass", np.zeros(6) if database is None else database.added_mass_infinite)
+        given = _six_by_six(owner, "added_mass", self.added_mass)
+        if database is not None and not np.allclose(given, database.added_mass_infinite, rtol=1e-6, atol=1e-6):
+            raise ValueError(f"{owner}: give added_mass or seakeeping, not both (the database's infinite-frequency "
+                             "added mass is the added mass)")
+        return given
 
     @classmethod
     def floating_solid(cls, hull: Hull, *, draft_fraction: float = 0.5, density: float = 1025.0, **fields) -> "BoatType":

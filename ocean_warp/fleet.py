@@ -10,7 +10,9 @@ import numpy as np
 import warp as wp
 
 from .boat_type import BoatType
-from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, HullMeshes
+from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, NO_WAVE_HISTORY, HullMeshes
+from .kernels.radiation import reset_radiation_masked
+from .radiation import radiation_states_per_boat
 from .resistance import FROUDE_SAMPLES
 from .kernels.rigid_body import (
     STATUS_BAD_INPUT,
@@ -109,6 +111,8 @@ class FleetModel:
     """Vertices of the largest hull (the hull pass's rounds per block)."""
     max_triangle_count: int
     """Triangles of the largest hull."""
+    radiation_states: int
+    """S, the radiation states of each boat (the most of any type: ``ocean_warp.radiation``)."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -127,6 +131,14 @@ class FleetState:
     """(N,) vec3: the water's orbital velocity at each boat's origin, body frame [m/s] (computed)."""
     swept_rate: wp.array
     """(total triangles,) float: each hull triangle's last swept rate A_sub |v| for slamming [m^3/s]."""
+    wave_velocity: wp.array
+    """(N,) vec3: the water's orbital velocity at the ocean's middle pressure depth under each boat's origin,
+    world frame [m/s] (computed by the hull pass; x = ``NO_WAVE_HISTORY`` after a reset)."""
+    wave_acceleration: wp.array
+    """(N,) vec3: its rate of change along the boat's path over the last substep, world frame [m/s^2]."""
+    radiation_state: wp.array
+    """(N * S,) float: each boat's block of S radiation states (``FleetModel.radiation_states``; Cummins' memory,
+    ``ocean_warp.kernels.radiation``), in the units of its type's state-space models."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -184,7 +196,7 @@ class Fleet:
             meshes=_hull_meshes(boat_types, device), body=_body_parameters(boat_types, device),
             triangle_offset=wp.array(_exclusive_sum(boat_triangles), dtype=int, device=device),
             total_triangles=total_triangles, max_vertex_count=max_vertex_count,
-            max_triangle_count=int(triangle_counts.max()))
+            max_triangle_count=int(triangle_counts.max()), radiation_states=radiation_states_per_boat(boat_types))
         """What describes the boats (see :class:`FleetModel`)."""
 
         n = self.count
@@ -194,7 +206,10 @@ class Fleet:
             orientation=wp.array(upright, dtype=wp.quat, device=device),
             velocity=wp.zeros(n, dtype=vec6, device=device), status=wp.zeros(n, dtype=int, device=device),
             water_velocity=wp.zeros(n, dtype=wp.vec3, device=device),
-            swept_rate=wp.full(max(total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device))
+            swept_rate=wp.full(max(total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device),
+            wave_velocity=wp.full(n, wp.vec3(NO_WAVE_HISTORY, 0.0, 0.0), dtype=wp.vec3, device=device),
+            wave_acceleration=wp.zeros(n, dtype=wp.vec3, device=device),
+            radiation_state=wp.zeros(max(n * self.model.radiation_states, 1), dtype=float, device=device))
         """What moves (see :class:`FleetState`)."""
         self.control = FleetControl(wrench_world=wp.zeros(n, dtype=vec6, device=device),
                                     wrench_body=wp.zeros(n, dtype=vec6, device=device))
@@ -257,12 +272,16 @@ class Fleet:
         wp.launch(reset_boats_masked, dim=self.count, device=device,
                   inputs=[mask, position, orientation, velocity],
                   outputs=[self.state.position, self.state.orientation, self.state.velocity, self.state.status,
-                           self.control.wrench_world, self.control.wrench_body, self.state.water_velocity])
+                           self.control.wrench_world, self.control.wrench_body, self.state.water_velocity,
+                           self.state.wave_velocity])
         model = self.model
         wp.launch(reset_swept_rates_masked, dim=(self.count, model.max_triangle_count), device=device,
                   inputs=[mask, model.hull_type, model.meshes.triangle_count, model.triangle_offset,
                           float(NO_SWEPT_RATE)],
                   outputs=[self.state.swept_rate])
+        if model.radiation_states:
+            wp.launch(reset_radiation_masked, dim=(self.count, model.radiation_states), device=device,
+                      inputs=[mask, model.radiation_states], outputs=[self.state.radiation_state])
 
     # --- host copies, for inspection and tests --------------------------------------------------------
     def numpy(self) -> dict[str, np.ndarray]:

@@ -14,7 +14,11 @@ from .kernels.ocean_spectrum import (
     FIELD_DISPLACEMENT,
     FIELD_HEIGHT,
     FIELD_SLOPE,
+    FIELD_PRESSURE_LOWER,
+    FIELD_PRESSURE_UPPER,
     FIELD_VELOCITY,
+    FIELD_VELOCITY_BELOW,
+    PACKED_QUADS,
     fields_along_x_kernel,
     packed_spectra,
     spectra_along_y_kernel,
@@ -56,6 +60,9 @@ class SurfaceSample(NamedTuple):
     """(M, 3) water velocity at the surface [m/s] (linear orbital velocity)."""
     grid_position: np.ndarray
     """(M, 2) the undisplaced grid position [m] whose choppy displacement lands on the point."""
+
+DEEP_WATER = 1.0e30
+"""The water depth [m] the spectrum kernel is given for deep water: its depth factors are then e^{k z}."""
 
 CELL_OMEGA = CELL_LAYOUT.index("omega")
 """Where a spectrum cell holds its wave's angular frequency [rad/s]."""
@@ -106,8 +113,8 @@ class Ocean:
         self.time = wp.zeros(1, dtype=wp.float64, device=self.device)
         """(1,) float64 time [s] of a standalone ocean's fields (``update(t)`` sets it; kernels may advance it
         inside a captured graph). A :class:`~ocean_warp.Simulator` evaluates its ocean at its own clock."""
-        # Pass 1 writes packed_spectra (n, n); pass 2 reads the same bytes as vec4f (n, 2 n).
-        self._spectra_quads = wp.zeros((n, 2 * n), dtype=wp.vec4f, device=self.device)
+        # Pass 1 writes packed_spectra (n, n); pass 2 reads the same bytes as vec4f (n, PACKED_QUADS n).
+        self._spectra_quads = wp.zeros((n, PACKED_QUADS * n), dtype=wp.vec4f, device=self.device)
         self._spectra = wp.array(ptr=self._spectra_quads.ptr, dtype=packed_spectra, shape=(n, n), device=self.device)
         self._field_rows = wp.zeros((FIELD_COUNT * n, n), dtype=wp.vec2f, device=self.device)
         self.fields = self._field_rows.reshape((FIELD_COUNT, n, n))
@@ -122,6 +129,10 @@ class Ocean:
         choppy = self.config.choppiness > 0
         self.surface.inversion_iterations = self.config.inversion_iterations if choppy else 0
         self.surface.inversion_tolerance_sq = self.config.inversion_tolerance**2
+        depths = self.config.pressure_depths
+        self.surface.pressure_depths = wp.vec3(-depths[0], -depths[1], -depths[2])
+        water_depth = self.config.depth if math.isfinite(self.config.depth) else DEEP_WATER
+        self._levels = wp.vec4f(-depths[0], -depths[1], -depths[2], water_depth)
 
         self.time_limit = exact_time_limit(float(np.max(self._base_cells[..., CELL_OMEGA])))
         """Largest |t| [s] :meth:`update` accepts: beyond it the float64 phase omega t of the grid's fastest
@@ -163,7 +174,7 @@ class Ocean:
         n = self.config.resolution
         block_dim = self.fft_plan.block_dim
         wp.launch_tiled(self._along_y, dim=[n], inputs=[self._cells, self.time if clock is None else clock,
-                                                         self._loop_period],
+                                                         self._loop_period, self._levels],
                         outputs=[self._spectra], block_dim=block_dim, device=self.device)
         if out is None:
             out = self._field_rows
@@ -276,7 +287,9 @@ class Ocean:
     def field_numpy(self, name: str) -> np.ndarray:
         """One real field on the grid as a host array (n, n), index [iy, ix]: "height" [m],
         "vertical_velocity" [m/s], "displacement_x"/"displacement_y" [m] (before choppiness),
-        "slope_x"/"slope_y", "velocity_x"/"velocity_y" [m/s]."""
+        "slope_x"/"slope_y", "velocity_x"/"velocity_y" [m/s]; below the surface, at the depths
+        ``config.pressure_depths`` (1, 2, 3): "pressure_head_1/2/3" (dynamic pressure / (rho g)) [m], and at the
+        second depth "vertical_velocity_2", "velocity_x_2"/"velocity_y_2" [m/s]."""
         layout = {
             "height": (FIELD_HEIGHT, 0),
             "vertical_velocity": (FIELD_HEIGHT, 1),
@@ -286,6 +299,12 @@ class Ocean:
             "slope_y": (FIELD_SLOPE, 1),
             "velocity_x": (FIELD_VELOCITY, 0),
             "velocity_y": (FIELD_VELOCITY, 1),
+            "pressure_head_1": (FIELD_PRESSURE_UPPER, 0),
+            "pressure_head_2": (FIELD_PRESSURE_UPPER, 1),
+            "pressure_head_3": (FIELD_PRESSURE_LOWER, 0),
+            "vertical_velocity_2": (FIELD_PRESSURE_LOWER, 1),
+            "velocity_x_2": (FIELD_VELOCITY_BELOW, 0),
+            "velocity_y_2": (FIELD_VELOCITY_BELOW, 1),
         }
         if name not in layout:
             raise ValueError(f"Ocean.field_numpy: unknown field {name!r}; choose one of {', '.join(layout)}")

@@ -88,6 +88,12 @@ class OceanConfig:
     """Mean direction the waves travel [rad], from +x counter-clockwise."""
     spreading: float | None = 10.0
     """Exponent s of the cos-2s directional spreading (larger = narrower); 0 or None = long-crested."""
+    pressure_depths: tuple = (0.05, 0.15, 0.35)
+    """Three depths [m] below still water, increasing, at which the ocean also evaluates the dynamic pressure
+    head of its waves (Airy: each wave's amplitude times cosh(k (z + d)) / cosh(k d)), and at the second the
+    water's orbital velocity. Hulls feel the Froude-Krylov pressure interpolated between the surface and
+    these depths (held below the last), and the water's motion at the second. The defaults suit a small
+    craft of 0.1-0.3 m draft; a deeper hull wants deeper levels."""
     depth: float = math.inf
     """Water depth [m]; inf for deep water. Enters the dispersion relation and the orbital motion."""
     choppiness: float = 0.0
@@ -154,6 +160,7 @@ class OceanConfig:
                 raise ValueError(f"{owner}.spreading must be in [0, 1000] or None, got {spreading!r}")
             set_field("spreading", spreading)
         set_field("depth", require_positive(owner, "depth", self.depth, allow_inf=True, unit=" [m]"))
+        set_field("pressure_depths", _pressure_depths(owner, self.pressure_depths))
         set_field("choppiness", require_non_negative(owner, "choppiness", self.choppiness))
         set_field("min_wavelength", require_non_negative(owner, "min_wavelength", self.min_wavelength, unit=" [m]"))
         set_field("amplitude", require_non_negative(owner, "amplitude", self.amplitude, unit=" [m]"))
@@ -187,3 +194,16 @@ class OceanConfig:
     def long_crested(self) -> bool:
         """True when all waves travel in ``direction`` (no directional spreading)."""
         return self.spreading is None or self.spreading == 0.0
+
+
+def _pressure_depths(owner: str, depths) -> tuple[float, float, float]:
+    """Three finite depths [m], 0 < d1 < d2 < d3, or ValueError naming the field."""
+    try:
+        values = tuple(float(d) for d in depths)
+    except (TypeError, ValueError):
+        values = ()
+    if (len(values) != 3 or isinstance(depths, (str, bytes)) or not all(math.isfinite(d) for d in values)
+            or not 0.0 < values[0] < values[1] < values[2]):
+        raise ValueError(f"{owner}.pressure_depths must be three depths [m] below still water with "
+                         f"0 < d1 < d2 < d3, got {depths!r}")
+    return values

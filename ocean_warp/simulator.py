@@ -13,6 +13,7 @@ from .hydrodynamics_config import HydrodynamicsConfig
 from .kernels.hull_forces import WaterModel, hull_wrenches_kernel, sample_origin_water
 from .kernels.rigid_body import SafetyBounds, advance_time, integrate_boats
 from .ocean import Ocean
+from .radiation import radiation_model
 from .replay import ReplayedLaunches
 from .torch_streams import ordered_with_torch
 from .validation import require_in_range, require_int_in_range, require_positive
@@ -97,6 +98,8 @@ class Simulator:
         self._hull_wrenches = hull_wrenches_kernel(vertex_rounds, self.block_dim)
         self.water = _water_model(self.config.hydrodynamics, ocean.config.water, self.config.substep_dt)
         """The hull pass's view of the hull model and of the ocean's water (its density, gravity, viscosity)."""
+        self.radiation = radiation_model(fleet.model.boat_types, self.config.substep_dt, self.device)
+        """The fleet's radiation models discretised for the substep (``ocean_warp.kernels.radiation``)."""
         self.bounds = SafetyBounds()
         self.bounds.max_altitude = self.config.max_altitude
         self.bounds.max_depth = self.config.max_depth
@@ -127,7 +130,8 @@ class Simulator:
         wp.launch_tiled(self._hull_wrenches, dim=[fleet.count], block_dim=self.block_dim, device=self.device,
                         inputs=[self.ocean.surface, fleet.model.meshes, self.water, fleet.model.hull_type, fleet.model.triangle_offset,
                                 fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.swept_rate],
-                        outputs=[fleet.state.water_velocity, fleet.forces.hydro_wrench])
+                        outputs=[fleet.state.water_velocity, fleet.state.wave_velocity, fleet.state.wave_acceleration,
+                                 fleet.forces.hydro_wrench])
 
     def integrate(self) -> None:
         """One substep of the rigid bodies with the wrenches computed last."""
@@ -135,8 +139,10 @@ class Simulator:
         wp.launch(integrate_boats, dim=fleet.count, device=self.device,
                   inputs=[fleet.model.body, fleet.model.hull_type, self.ocean.config.water.gravity, self.config.substep_dt,
                           self.bounds, fleet.forces.hydro_wrench, fleet.forces.model_wrench, fleet.control.wrench_world, fleet.control.wrench_body,
-                          fleet.state.water_velocity],
-                  outputs=[fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.status])
+                          fleet.state.water_velocity, self.radiation, fleet.state.wave_velocity,
+                          fleet.state.wave_acceleration],
+                  outputs=[fleet.state.radiation_state, fleet.state.position, fleet.state.orientation,
+                           fleet.state.velocity, fleet.state.status])
 
     def substep(self, *, update_ocean: bool = True) -> None:
         """Ocean (optionally), water forces, force models, integration, time += dt / substeps."""

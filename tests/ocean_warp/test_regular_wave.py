@@ -85,3 +85,42 @@ def test_regular_wave_snaps_to_grid_with_warning(device):
     dk = 2 * math.pi / 100.0
     assert wave.wavevector[0] / dk == pytest.approx(round(wave.wavevector[0] / dk), abs=1e-9)
     assert wave.omega**2 == pytest.approx(GRAVITY * wave.wavenumber, rel=1e-12)
+
+
+@pytest.mark.parametrize("depth", [math.inf, 3.0])
+def test_wave_pressure_and_motion_decay_with_depth_as_airy_says(device, rng, depth):
+    """Below the surface the dynamic pressure head is a cosh(k (z + h)) / cosh(k h) cos(theta) (e^{k z} in deep
+    water), and the orbital velocity at the middle depth decays likewise: the ocean's depth fields on the grid
+    against linear wave theory, at depths drawn at random."""
+    period = float(rng.uniform(0.9, 2.5))
+    k = airy_wavenumber(period, depth)
+    tile = math.hypot(3, 2) * 2 * math.pi / k
+    depths = tuple(np.sort(rng.uniform(0.02, 0.6, size=3)))
+    a, phase, direction = float(rng.uniform(0.02, 0.1)), float(rng.uniform(-math.pi, math.pi)), math.atan2(2, 3)
+    ocean = Ocean(OceanConfig(spectrum="regular", tile_size=tile, resolution=64, amplitude=a, period=period,
+                              direction=direction, phase=phase, depth=depth, pressure_depths=depths), device=device)
+    omega = 2 * math.pi / period
+    k_vec = k * np.array([math.cos(direction), math.sin(direction)])
+    t = float(rng.uniform(0.0, 600.0))
+    ocean.update(t)
+    x, y = np.meshgrid(ocean.grid_axis(), ocean.grid_axis())
+    theta = x * k_vec[0] + y * k_vec[1] - omega * t + phase
+
+    def factor(d):
+        return math.exp(-k * d) if math.isinf(depth) else math.cosh(k * (depth - d)) / math.cosh(k * depth)
+
+    for index, d in enumerate(depths, start=1):
+        expected = a * factor(d) * np.cos(theta)
+        np.testing.assert_allclose(ocean.field_numpy(f"pressure_head_{index}"), expected, atol=2e-3 * a, rtol=0)
+    speed = a * omega * factor(depths[1])
+    horizontal = speed * (1.0 if math.isinf(depth) else 1.0 / math.tanh(k * depth))
+    np.testing.assert_allclose(ocean.field_numpy("vertical_velocity_2"), speed * np.sin(theta),
+                               atol=2e-3 * speed + (0.0 if math.isinf(depth) else 0.05 * speed), rtol=0)
+    np.testing.assert_allclose(ocean.field_numpy("velocity_x_2"), horizontal * math.cos(direction) * np.cos(theta),
+                               atol=2e-3 * horizontal, rtol=0)
+
+
+@pytest.mark.parametrize("depths", [(0.1, 0.1, 0.3), (0.0, 0.1, 0.2), (0.1, 0.2), "deep", (0.1, 0.2, math.inf)])
+def test_pressure_depths_are_checked(depths):
+    with pytest.raises(ValueError, match="OceanConfig.pressure_depths must be three depths"):
+        OceanConfig(pressure_depths=depths)
