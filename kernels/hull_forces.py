@@ -26,7 +26,7 @@ from .ocean_surface import (
     undisplaced_position,
     undisplaced_position_near,
     velocity_at_depth,
-    water_below_surface,
+    pressure_head,
 )
 from .spatial import vec6, wrench, wrench_at
 
@@ -406,14 +406,16 @@ def sample_vertex_water(surface: OceanSurface, local: wp.vec3, origin: wp.vec3, 
                         origin_shift: wp.vec2) -> wp.vec4:
     """(pressure head p / (rho g) [m], positive where submerged, water velocity [m/s] in the body frame) at the
     hull point ``local`` (body frame) of a boat at ``origin`` turned by ``rotation``: hydrostatic plus the waves'
-    Froude-Krylov head decaying with depth (:func:`water_below_surface`). ``origin_shift`` [m] is the choppy
-    displacement at the boat's origin (see :func:`undisplaced_position_near`)."""
+    Froude-Krylov head decaying with depth (:func:`pressure_head`). The velocity, which only the drag and
+    friction see, is the surface's orbital velocity above the point (viscous forces of a hull's small orbital
+    speeds are small; the decay with depth is left out to keep this pass cheap). ``origin_shift`` [m] is the
+    choppy displacement at the boat's origin (see :func:`undisplaced_position_near`)."""
     offset = wp.quat_rotate(rotation, local)
     xy = wp.vec2(origin[0] + offset[0], origin[1] + offset[1])
     q = undisplaced_position_near(surface, xy, origin_shift)
-    water = water_below_surface(surface, q, origin[2] + offset[2], height_velocity_at_grid(surface, q))
+    water = height_velocity_at_grid(surface, q)
     flow = wp.quat_rotate_inv(rotation, wp.vec3(water[1], water[2], water[3]))
-    return wp.vec4(water[0], flow[0], flow[1], flow[2])
+    return wp.vec4(pressure_head(surface, q, origin[2] + offset[2], water[0]), flow[0], flow[1], flow[2])
 
 
 NO_WAVE_HISTORY = wp.constant(3.0e38)

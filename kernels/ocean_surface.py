@@ -28,7 +28,7 @@ __all__ = [
     "undisplaced_position_near",
     "inverted_displacement",
     "height_velocity_at_grid",
-    "water_below_surface",
+    "pressure_head",
     "velocity_at_depth",
     "surface_height",
     "surface_height_velocity",
@@ -130,32 +130,28 @@ def _between(z: float, z_upper: float, z_lower: float, upper: float, lower: floa
 
 
 @wp.func
-def water_below_surface(surface: OceanSurface, q: wp.vec2, z: float, surface_state: wp.vec4) -> wp.vec4:
-    """(pressure head p / (rho g) [m], u, v, w [m/s]) of the water at height ``z`` [m] (world) under the surface
-    particle of grid position ``q``, whose ``surface_state`` is (height, u, v, w) (:func:`height_velocity_at_grid`).
+def pressure_head(surface: OceanSurface, q: wp.vec2, z: float, height: float) -> float:
+    """p / (rho g) [m] at height ``z`` [m] (world) under the surface particle of grid position ``q``, whose
+    surface is at ``height`` [m]: positive in the water, negative above it (dry).
 
-    Above still water the pressure is hydrostatic up to the surface, height - z (negative above it: dry), and
-    the water moves as the surface does. Below it, the pressure head is -z plus the waves' dynamic head, and the
-    velocity the orbital one, both interpolated linearly between the surface (z = 0) and the ocean's depths
-    (``pressure_depths``; the velocity between the surface and z2) and held below the deepest."""
+    Above still water the pressure is hydrostatic up to the surface, height - z. Below it, it is -z plus the
+    waves' dynamic head, interpolated linearly in z between the surface (z = 0, where it is the height) and the
+    ocean's depths (``pressure_depths``), and held below the deepest."""
     if z >= 0.0:
-        return wp.vec4(surface_state[0] - z, surface_state[1], surface_state[2], surface_state[3])
+        return height - z
     levels = surface.pressure_depths
     upper = periodic_bilinear(surface, FIELD_PRESSURE_UPPER, q)
-    lower = periodic_bilinear(surface, FIELD_PRESSURE_LOWER, q)
-    below = periodic_bilinear(surface, FIELD_VELOCITY_BELOW, q)
-    dynamic = lower[0]
+    dynamic = float(0.0)
     if z >= levels[0]:
-        dynamic = _between(z, 0.0, levels[0], surface_state[0], upper[0])
+        dynamic = _between(z, 0.0, levels[0], height, upper[0])
     elif z >= levels[1]:
         dynamic = _between(z, levels[0], levels[1], upper[0], upper[1])
-    elif z >= levels[2]:
-        dynamic = _between(z, levels[1], levels[2], upper[1], lower[0])
-    fraction = wp.min(z / levels[1], 1.0)
-    u = surface_state[1] + fraction * (below[0] - surface_state[1])
-    v = surface_state[2] + fraction * (below[1] - surface_state[2])
-    w = surface_state[3] + fraction * (lower[1] - surface_state[3])
-    return wp.vec4(dynamic - z, u, v, w)
+    else:
+        deepest = periodic_bilinear(surface, FIELD_PRESSURE_LOWER, q)[0]
+        dynamic = deepest
+        if z >= levels[2]:
+            dynamic = _between(z, levels[1], levels[2], upper[1], deepest)
+    return dynamic - z
 
 
 @wp.func

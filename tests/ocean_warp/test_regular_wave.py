@@ -8,9 +8,11 @@ import math
 
 import numpy as np
 import pytest
+import warp as wp
 from scipy.optimize import brentq
 
 from ocean_warp import Ocean, OceanConfig
+from ocean_warp.kernels.ocean_surface import OceanSurface, height_velocity_at_grid, pressure_head, undisplaced_position
 
 GRAVITY = 9.81
 
@@ -124,3 +126,38 @@ def test_wave_pressure_and_motion_decay_with_depth_as_airy_says(device, rng, dep
 def test_pressure_depths_are_checked(depths):
     with pytest.raises(ValueError, match="OceanConfig.pressure_depths must be three depths"):
         OceanConfig(pressure_depths=depths)
+
+
+@wp.kernel
+def _pressure_heads(surface: OceanSurface, points: wp.array(dtype=wp.vec3), heads: wp.array(dtype=float)):
+    i = wp.tid()
+    p = points[i]
+    q = undisplaced_position(surface, wp.vec2(p[0], p[1]))
+    heads[i] = pressure_head(surface, q, p[2], height_velocity_at_grid(surface, q)[0])
+
+
+def test_the_pressure_a_hull_feels_is_airys_between_the_depths(device, rng):
+    """p / (rho g) at random points under a regular wave: -z + a e^{k z} cos(theta) (deep water) at the ocean's
+    depths, linear in z between them and the surface, held below the deepest; above still water hydrostatic
+    up to the surface."""
+    period = float(rng.uniform(1.0, 2.0))
+    k = airy_wavenumber(period, math.inf)
+    tile = 4 * 2 * math.pi / k
+    a = float(rng.uniform(0.03, 0.08))
+    depths = (0.05, 0.15, 0.35)
+    ocean = Ocean(OceanConfig(spectrum="regular", tile_size=tile, resolution=256, amplitude=a, period=period,
+                              direction=0.0, pressure_depths=depths), device=device)
+    t = float(rng.uniform(0.0, 100.0))
+    ocean.update(t)
+    count = 400
+    x = rng.uniform(0.0, tile, size=count)
+    z = rng.uniform(-0.5, 0.1, size=count)
+    points = wp.array(np.column_stack([x, np.zeros(count), z]).astype(np.float32), dtype=wp.vec3, device=device)
+    heads = wp.zeros(count, dtype=float, device=device)
+    wp.launch(_pressure_heads, dim=count, inputs=[ocean.surface, points, heads], device=device)
+    phase = np.cos(k * x - 2 * math.pi / period * t)
+    levels = np.array([0.0, -depths[0], -depths[1], -depths[2]])
+    at_levels = a * np.exp(k * levels)[None, :] * phase[:, None]
+    dynamic = np.array([np.interp(-zi, -levels, row) for zi, row in zip(z, at_levels)])  # held below the deepest
+    expected = np.where(z >= 0.0, a * phase - z, dynamic - z)
+    np.testing.assert_allclose(heads.numpy(), expected, atol=3e-3 * a, rtol=0)
