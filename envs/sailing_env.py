@@ -346,4 +346,12 @@ def _start_distribution(task: TaskConfig, start_height: float) -> StartDistribut
     d.sheet_low, d.sheet_high = rad(s.sheet_deg[0]), rad(s.sheet_deg[1])
     d.foil_variation = s.foil_variation
     d.noise_scale_low, d.noise_scale_high = s.sensor_noise_scale
+    current = task.simulator.current
+    if s.current_speed is None:  # the config's current, every episode
+        d.current_speed_low = d.current_speed_high = current.speed
+        d.current_direction_low = d.current_direction_high = current.direction
+    else:
+        d.current_speed_low, d.current_speed_high = s.current_speed
+        d.current_direction_low = rad(s.current_direction_deg[0])
+        d.current_direction_high = rad(s.current_direction_deg[1])
     return d

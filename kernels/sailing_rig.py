@@ -18,6 +18,7 @@ import warp as wp
 from .foils import FoilTables, foil_force
 from .rigid_body import STATUS_BAD_INPUT, STATUS_NONFINITE
 from .spatial import DEGREES, point_velocity, vec6, wrench_at
+from .water_current import CurrentField, with_current_shift
 from .wind_field import GustModel, wind_at_height
 
 __all__ = ["RigParameters", "RigControl", "RigState", "RigSurroundings", "sailing_rig", "reset_rig"]
@@ -121,9 +122,11 @@ class RigSurroundings:
     velocity: wp.array(dtype=vec6)
     """Fossen's nu: body-frame velocity [m/s] and angular velocity [rad/s]."""
     water_velocity: wp.array(dtype=wp.vec3)
-    """The water's orbital velocity at the boat, body frame [m/s]."""
+    """The water's velocity at the boat's origin, body frame [m/s]: the waves' orbital velocity and the current."""
     wind_velocity: wp.array(dtype=wp.vec3)
     """The true wind at the reference height, world frame [m/s]."""
+    current: CurrentField
+    """The current (the Simulator's ``current_field``), for its change with depth down to the keel and rudder."""
 
 
 
@@ -201,14 +204,19 @@ def sailing_rig(
     state.boom_angle[boat] = new_boom
     state.boom_rate[boat] = rate
 
-    # Keel and rudder in the water (its orbital velocity at the boat, body frame).
+    # Keel and rudder in the water (its velocity at the boat, body frame, with the current at each foil's depth).
     water = around.water_velocity[boat]
-    keel_force = scale[1] * _force(foil_force(water - point_velocity(nu, rig.keel_center), wp.vec3(-1.0, 0.0, 0.0),
-                                              down, rig.keel_area, rig.water_density, tables.keel_lift,
-                                              tables.keel_drag, rig.foil_lift_limit))
+    origin_height = around.position[boat][2]
+    keel_water = with_current_shift(water, around.current, boat, rotation, origin_height,
+                                    origin_height + wp.quat_rotate(rotation, rig.keel_center)[2])
+    rudder_water = with_current_shift(water, around.current, boat, rotation, origin_height,
+                                      origin_height + wp.quat_rotate(rotation, rig.rudder_center)[2])
+    keel_force = scale[1] * _force(foil_force(keel_water - point_velocity(nu, rig.keel_center),
+                                              wp.vec3(-1.0, 0.0, 0.0), down, rig.keel_area, rig.water_density,
+                                              tables.keel_lift, tables.keel_drag, rig.foil_lift_limit))
     rudder_chord = wp.vec3(-wp.cos(rudder), wp.sin(rudder), 0.0)
-    rudder_force = scale[2] * _force(foil_force(water - point_velocity(nu, rig.rudder_center), rudder_chord, down,
-                                                rig.rudder_area, rig.water_density, tables.rudder_lift,
+    rudder_force = scale[2] * _force(foil_force(rudder_water - point_velocity(nu, rig.rudder_center), rudder_chord,
+                                                down, rig.rudder_area, rig.water_density, tables.rudder_lift,
                                                 tables.rudder_drag, rig.foil_lift_limit))
     if rig.original_tuning != 0:
         rudder_force = 0.3 * rudder_force

@@ -3,7 +3,7 @@
 Channels (columns of the (boats, 16) reading arrays):
 
     0-2   GNSS position, world ENU [m]
-    3-5   GNSS velocity, world [m/s]
+    3-5   GNSS velocity, world [m/s]: over the ground
     6-8   IMU specific force, body frame [m/s^2]: acceleration minus gravity (at rest: +g up)
     9-11  IMU angular rate, body frame [rad/s]
     12    compass heading: yaw of the bow from +x (east) counter-clockwise [rad], [-pi, pi)
@@ -12,7 +12,9 @@ Channels (columns of the (boats, 16) reading arrays):
     14    apparent wind speed at the masthead [m/s]
           (13 and 14, as a masthead unit turning with the boat, see the wind's part in the deck plane:
           its body-frame x and y)
-    15    speed through the water: surge relative to the water's orbital velocity [m/s]
+    15    speed through the water (the log): surge relative to the water at the boat's origin, the waves'
+          orbital velocity and the current [m/s]: the surge over the ground (3-5 seen along the bow) less
+          the water's, so in a current the log and the GNSS disagree by the current's part along the bow
 
 A channel with period p steps refreshes its noisy reading every p steps (and holds it between);
 noise is Gaussian with the channel's standard deviation, plus, for the IMU, a bias drawn per boat at

@@ -50,6 +50,8 @@ _PUBLIC = {
     "RegularWave": "wave_grid",
     "Wind": "wind",
     "WindConfig": "wind",
+    "Current": "current",
+    "CurrentConfig": "current_config",
     "CHANNEL_NAMES": "sensors",
     "SensorConfig": "sensors",
     "Sensors": "sensors",
@@ -69,7 +71,8 @@ __all__ = [
     "Ocean", "OceanConfig", "WaterConfig", "Spectrum", "SurfaceSample", "RegularWave", "FftPlan",
     "Hull", "HullRepairWarning", "BoatType", "HydrodynamicsConfig",
     "Fleet", "FleetTensors", "BoatStatus", "Simulator", "SimulatorConfig",
-    "Wind", "WindConfig", "Sensors", "SensorConfig", "CHANNEL_NAMES", "EBoat", "EBoatConfig", "EBoatSimulator",
+    "Wind", "WindConfig", "Current", "CurrentConfig", "Sensors", "SensorConfig", "CHANNEL_NAMES", "EBoat", "EBoatConfig",
+    "EBoatSimulator",
     "EBoatSimulatorConfig",
 ]
 

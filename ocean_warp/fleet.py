@@ -132,8 +132,8 @@ class FleetState:
     swept_rate: wp.array
     """(total triangles,) float: each hull triangle's last swept rate A_sub |v| for slamming [m^3/s]."""
     wave_velocity: wp.array
-    """(N,) vec3: the water's orbital velocity at the ocean's middle pressure depth under each boat's origin,
-    world frame [m/s] (computed by the hull pass; x = ``NO_WAVE_HISTORY`` after a reset)."""
+    """(N,) vec3: the water's velocity at the ocean's middle pressure depth under each boat's origin, orbital plus
+    current, world frame [m/s] (computed by the hull pass; x = ``NO_WAVE_HISTORY`` after a reset)."""
     wave_acceleration: wp.array
     """(N,) vec3: its rate of change along the boat's path over the last substep, world frame [m/s^2]."""
     radiation_state: wp.array

@@ -7,6 +7,7 @@ import math
 
 import warp as wp
 
+from .current import Current, no_current
 from .device_structs import struct_from
 from .fleet import Fleet
 from .hydrodynamics_config import HydrodynamicsConfig
@@ -79,9 +80,14 @@ class Simulator:
     ``models`` are objects with ``substep(simulator)``, which launches kernels that add body-frame
     wrenches about the origin to ``fleet.forces.model_wrench`` (zeroed before them every substep), and
     optionally ``step(simulator)``, run once per step after the substeps. They launch in list order.
+
+    ``current``: a :class:`~ocean_warp.Current` of one environment per boat, updated at the start of every
+    substep (before the hull pass) from the simulator's clock; the hull, the boats' damping and the force
+    models then feel the water's velocity relative to the boat, current included. None: still water.
     """
 
-    def __init__(self, ocean: Ocean, fleet: Fleet, config: SimulatorConfig | None = None, *, models=()):
+    def __init__(self, ocean: Ocean, fleet: Fleet, config: SimulatorConfig | None = None, *, models=(),
+                 current: Current | None = None):
         self.config = config if config is not None else SimulatorConfig()
         if not isinstance(ocean, Ocean) or not isinstance(fleet, Fleet):
             raise ValueError("Simulator needs an ocean_warp.Ocean and an ocean_warp.Fleet")
@@ -100,6 +106,17 @@ class Simulator:
         """The hull pass's view of the hull model and of the ocean's water (its density, gravity, viscosity)."""
         self.radiation = radiation_model(fleet.model.boat_types, self.config.substep_dt, self.device)
         """The fleet's radiation models discretised for the substep (``ocean_warp.kernels.radiation``)."""
+        if current is not None:
+            if not isinstance(current, Current):
+                raise ValueError(f"Simulator: current must be an ocean_warp.Current or None, got {current!r}")
+            if current.device != self.device or current.count != fleet.count:
+                raise ValueError(f"Simulator: the current holds {current.count} environments on {current.device}, "
+                                 f"the fleet {fleet.count} boats on {self.device}: one environment per boat")
+            current.follow(self.clock)
+        self.current = current
+        """The water's current (a :class:`~ocean_warp.Current`), or None: still water."""
+        self.current_field = current.field if current is not None else no_current(self.device)
+        """What the force kernels read of the current (a field without rows when there is none)."""
         self.bounds = SafetyBounds()
         self.bounds.max_altitude = self.config.max_altitude
         self.bounds.max_depth = self.config.max_depth
@@ -129,7 +146,8 @@ class Simulator:
         fleet = self.fleet
         wp.launch_tiled(self._hull_wrenches, dim=[fleet.count], block_dim=self.block_dim, device=self.device,
                         inputs=[self.ocean.surface, fleet.model.meshes, self.water, fleet.model.hull_type, fleet.model.triangle_offset,
-                                fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.swept_rate],
+                                fleet.state.position, fleet.state.orientation, fleet.state.velocity,
+                                fleet.state.swept_rate, self.current_field],
                         outputs=[fleet.state.water_velocity, fleet.state.wave_velocity, fleet.state.wave_acceleration,
                                  fleet.forces.hydro_wrench])
 
@@ -145,9 +163,11 @@ class Simulator:
                            fleet.state.velocity, fleet.state.status])
 
     def substep(self, *, update_ocean: bool = True) -> None:
-        """Ocean (optionally), water forces, force models, integration, time += dt / substeps."""
+        """Ocean (optionally), current, water forces, force models, integration, time += dt / substeps."""
         if update_ocean:
             self.ocean.update(clock=self.clock)
+        if self.current is not None:
+            self.current.update()
         if self.config.hull_pressure:
             self.compute_hull_wrenches()
         else:
@@ -162,7 +182,8 @@ class Simulator:
         """Without the hull pass, still sample the water velocity at each boat's origin."""
         fleet = self.fleet
         wp.launch(sample_origin_water, dim=fleet.count, device=self.device,
-                  inputs=[self.ocean.surface, fleet.state.position, fleet.state.orientation], outputs=[fleet.state.water_velocity])
+                  inputs=[self.ocean.surface, fleet.state.position, fleet.state.orientation, self.current_field],
+                  outputs=[fleet.state.water_velocity])
 
     def launch_step(self) -> None:
         """Launch one step's kernels without capturing them, e.g. inside a larger capture of the caller's

@@ -110,6 +110,12 @@ class StartConfig:
     sensor_noise_scale: tuple[float, float] = (1.0, 1.0)
     """Range of the per-episode factor on every sensor's noise and the IMU bias (0 to 10; (1, 1): the
     sensor config's noise exactly)."""
+    current_speed: tuple[float, float] | None = None
+    """Range of the steady speed of the water's current [m/s] (0 to 5), drawn per episode with its direction
+    (the tide and depth profile stay the simulator config's); None (every task's default): the simulator
+    config's current every episode (``EBoatSimulatorConfig.current``: none by default)."""
+    current_direction_deg: tuple[float, float] = (-180.0, 180.0)
+    """Range of the direction the current sets toward [deg, from +x counter-clockwise], with ``current_speed``."""
 
     def __post_init__(self):
         owner = "StartConfig"
@@ -117,8 +123,11 @@ class StartConfig:
                                 ("wind_direction_deg", -360.0, 360.0), ("gust_scale", 0.0, 10.0),
                                 ("waypoint_distance", 0.0, 10_000.0), ("waypoint_bearing_deg", -360.0, 360.0),
                                 ("surge_speed", -2.0, 5.0), ("sheet_deg", 0.0, 90.0),
-                                ("sensor_noise_scale", 0.0, 10.0)):
+                                ("sensor_noise_scale", 0.0, 10.0), ("current_direction_deg", -360.0, 360.0)):
             object.__setattr__(self, name, require_range_pair(owner, name, getattr(self, name), low, high))
+        if self.current_speed is not None:
+            object.__setattr__(self, "current_speed", require_range_pair(owner, "current_speed", self.current_speed,
+                                                                         0.0, 5.0))
         for name in ("heading_step_deg", "wind_direction_step_deg"):
             object.__setattr__(self, name, require_in_range(owner, name, getattr(self, name), 0.0, 360.0))
         object.__setattr__(self, "position_jitter", require_non_negative(owner, "position_jitter",

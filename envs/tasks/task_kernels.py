@@ -20,6 +20,8 @@ EPISODE_START = wp.constant(0x3C6E_F372)
 """Tag of the random stream that draws each episode's start."""
 RANDOMISATION = wp.constant(0x510E_527F)
 """Tag of the random stream that draws each episode's domain randomisation (foil and sensor-noise factors)."""
+CURRENT_DRAW = wp.constant(0x5BE0_CD19)
+"""Tag of the random stream that draws each episode's current (speed and direction)."""
 SEED_OBS = wp.constant(5)
 PLUS_OBS = wp.constant(15)
 PRIVILEGED_OBS = 12
@@ -131,6 +133,8 @@ class StartRows:
     gust_scale: wp.array(dtype=float)
     foil_scale: wp.array(dtype=wp.vec3)
     noise_scale: wp.array(dtype=float)
+    current_speed: wp.array(dtype=float)
+    current_direction: wp.array(dtype=float)
 
 
 @wp.struct
@@ -165,6 +169,12 @@ class StartDistribution:
     """Half-width v of the foil factors' range [1 - v, 1 + v]."""
     noise_scale_low: float
     noise_scale_high: float
+    current_speed_low: float
+    """[m/s]; low = high (the simulator config's speed) when the task does not randomise the current."""
+    current_speed_high: float
+    current_direction_low: float
+    """[rad]"""
+    current_direction_high: float
 
 
 @wp.func
@@ -433,8 +443,8 @@ def draw_starts(
     """A new episode for every environment whose ``reset_mask`` is set, from its own random stream
     (seed, environment ``first_env`` + index, episode number): the simulator's start rows and the task's
     bookkeeping (``first_env``: the number of this batch's first environment in a larger one). The
-    domain randomisation (foil and sensor-noise factors) draws last, from a stream of its own, so the
-    rest of an episode's start does not depend on it."""
+    domain randomisation (foil and sensor-noise factors) and the current draw last, each from a stream of
+    its own, so the rest of an episode's start does not depend on them."""
     env = wp.tid()
     if reset_mask[env] == 0:
         return
@@ -470,6 +480,11 @@ def draw_starts(
     rudder = (1.0 - v) + (2.0 * v) * wp.randf(dr)
     rows.foil_scale[env] = wp.vec3(sail, keel, rudder)
     rows.noise_scale[env] = start.noise_scale_low + (start.noise_scale_high - start.noise_scale_low) * wp.randf(dr)
+    # The current, from a stream of its own too (a range of one value draws exactly that value).
+    flow = stream_state(seed[0], CURRENT_DRAW, episode, first_env + env)
+    rows.current_speed[env] = from_uniform(wp.randf(flow), start.current_speed_low, start.current_speed_high, 0.0)
+    rows.current_direction[env] = from_uniform(wp.randf(flow), start.current_direction_low,
+                                               start.current_direction_high, 0.0)
 
     course.target_index[env] = 0
     course.leg_start[env] = local

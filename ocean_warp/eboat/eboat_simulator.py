@@ -1,5 +1,5 @@
-"""Many E-Boats on one ocean, each in a wind of its own: the Simulator with the rig, wind and sensor
-models wired in, and named views of its state, controls and resets."""
+"""Many E-Boats on one ocean, each in a wind and a current of its own: the Simulator with the rig, wind, current
+and sensor models wired in, and named views of its state, controls and resets."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import dataclasses
 import numpy as np
 import warp as wp
 
+from ocean_warp.current import Current
 from ocean_warp.fleet import Fleet
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.kernels.point_buoyancy import point_buoyancy
@@ -31,7 +32,8 @@ class SailingRig:
     """Every boat's rig: its model (``parameters``, ``tables``: the E-Boat's sail, keel, rudder and
     propeller, the water's density), its ``state`` (actuators, boom, foil factors) and its ``control`` (the
     commands), and the force model that turns them, with the wind and the water, into sail, keel, rudder,
-    windage and propeller forces every substep. ``state`` and ``control`` are Warp structs of (N,) arrays
+    windage and propeller forces every substep (keel and rudder in the water's flow at their depth, current
+    included). ``state`` and ``control`` are Warp structs of (N,) arrays
     (``RigState``, ``RigControl`` in ``ocean_warp.kernels.sailing_rig``: names, units)."""
 
     def __init__(self, eboat: EBoat, count: int, wind: Wind, *, water_density: float, device):
@@ -51,9 +53,10 @@ class SailingRig:
         self._around: RigSurroundings | None = None
 
     def substep(self, simulator) -> None:
-        if self._around is None:  # the fleet's and the wind's arrays, bound once
+        if self._around is None:  # the fleet's, the wind's and the current's arrays, bound once
             fleet = simulator.fleet
-            self._around = struct_from(RigSurroundings, fleet.state, wind_velocity=self.wind.state.velocity)
+            self._around = struct_from(RigSurroundings, fleet.state, wind_velocity=self.wind.state.velocity,
+                                       current=simulator.current_field)
         wp.launch(sailing_rig, dim=self.count, device=self.device,
                   inputs=[self.parameters, self.tables, self.wind.gusts, simulator.config.substep_dt, self._around,
                           self.control, self.state],
@@ -97,7 +100,7 @@ def _fleet(eboat: EBoat, config: EBoatSimulatorConfig, count: int, device,
 
 
 class EBoatSimulator:
-    """``count`` E-Boats on one ocean, boat i in environment i with a wind of its own.
+    """``count`` E-Boats on one ocean, boat i in environment i with a wind and a current of its own.
 
     Example::
 
@@ -143,6 +146,7 @@ class EBoatSimulator:
         fixed for the simulator's life: all 1 without ``config.mass_variation``, else boat i has
         ``config.mass_factors()[(first_boat + i) % K]`` (its BoatType: ``fleet.model.boat_types[(first_boat + i) % K]``)."""
         self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device, first_index=self.first_boat)
+        self.current = Current(config.current, count, device=device)
         self.rig = SailingRig(self.eboat, count, self.wind, water_density=config.water.density, device=device)
         self.sensors = Sensors(config.sensors, count, masthead=self.eboat.masthead, wind=self.wind, step=config.dt,
                                gravity=config.water.gravity, device=device, first_index=self.first_boat)
@@ -150,17 +154,18 @@ class EBoatSimulator:
         if config.boat.hydrostatics is Hydrostatics.POINTS:
             models.append(_PointBuoyancyModel(self.eboat, device, config.water))
         models += [self.rig, self.sensors]
-        self.simulator = Simulator(ocean, self.fleet, config.simulator_config(), models=models)
+        self.simulator = Simulator(ocean, self.fleet, config.simulator_config(), models=models, current=self.current)
         self.ocean = ocean
 
-        fleet, rig, wind, sensors = self.fleet, self.rig, self.wind, self.sensors
+        fleet, rig, wind, sensors, current = self.fleet, self.rig, self.wind, self.sensors, self.current.state
         self.state = EBoatState(
             position=fleet.state.position, orientation=fleet.state.orientation, velocity=fleet.state.velocity, status=fleet.state.status,
             water_velocity=fleet.state.water_velocity, rudder_angle=rig.state.rudder_angle,
             sheet_limit=rig.state.sheet_limit, boom_angle=rig.state.boom_angle, boom_rate=rig.state.boom_rate,
             wind_mean_speed=wind.state.mean_speed, wind_mean_direction=wind.state.mean_direction,
             wind_speed=wind.state.speed, wind_direction=wind.state.direction, wind_velocity=wind.state.velocity,
-            gust_scale=wind.state.gust_scale, foil_scale=rig.state.foil_scale,
+            gust_scale=wind.state.gust_scale, current_speed=current.speed, current_direction=current.direction,
+            current_velocity=current.velocity, foil_scale=rig.state.foil_scale,
             noise_scale=sensors.noise_scale, readings=sensors.readings, truth=sensors.truth, time=self.simulator.clock)
         """What moves (Warp arrays; see :class:`EBoatState` for units)."""
         self.control = EBoatControl(rudder=rig.control.rudder, sheet=rig.control.sheet,
@@ -184,14 +189,16 @@ class EBoatSimulator:
         return self.simulator.time
 
     def reset(self, boats=None, *, position=(0.0, 0.0, 0.0), heading=0.0, velocity=None, wind_speed=None,
-              wind_direction=None, sheet=None, foil_scale=None, noise_scale=None) -> None:
+              wind_direction=None, sheet=None, foil_scale=None, noise_scale=None, current_speed=None,
+              current_direction=None) -> None:
         """Host path of :meth:`reset_masked`. Put the chosen boats (None: all) upright at ``position`` [m]
         with ``heading`` [rad, yaw from +x] and ``velocity`` (Fossen nu, default at rest); centre their
         rudder and boom, stop the propeller, and sheet in, or set the sheet (command and actual limit) to
-        ``sheet`` [rad, clipped to 0-90 deg]; optionally set their environments' mean wind [m/s, rad]
-        (default: keep it). ``foil_scale``, factors on the (sail, keel, rudder) lift and drag coefficients
-        (a row of 3 per chosen boat), and ``noise_scale``, a factor on each chosen boat's sensor noise,
-        default to 1 (as configured), whatever they were. Scalars and single rows broadcast."""
+        ``sheet`` [rad, clipped to 0-90 deg]; optionally set their environments' mean wind [m/s, rad] and
+        steady current (``current_speed`` [m/s] toward ``current_direction`` [rad]) (default: keep them).
+        ``foil_scale``, factors on the (sail, keel, rudder) lift and drag coefficients (a row of 3 per chosen
+        boat), and ``noise_scale``, a factor on each chosen boat's sensor noise, default to 1 (as configured),
+        whatever they were. Scalars and single rows broadcast."""
         owner = "EBoatSimulator.reset"
         indices = require_indices(owner, "boats", boats, self.count)
         k = len(indices)
@@ -203,11 +210,19 @@ class EBoatSimulator:
             old_speed = self.wind.state.mean_speed.numpy()[indices]
             old_direction = self.wind.state.mean_direction.numpy()[indices]
             gust_scales = self.wind.state.gust_scale.numpy()[indices]
+            old_current_speed = self.current.state.speed.numpy()[indices]
+            old_current_direction = self.current.state.direction.numpy()[indices]
         speeds = old_speed if wind_speed is None else require_per_item(owner, "wind_speed", wind_speed, k)
         directions = old_direction if wind_direction is None else require_per_item(owner, "wind_direction",
                                                                                     wind_direction, k)
         if np.any(speeds < 0.0):
             raise ValueError(f"{owner}.wind_speed must be >= 0 [m/s]")
+        current_speeds = old_current_speed if current_speed is None else require_per_item(
+            owner, "current_speed", current_speed, k)
+        current_directions = old_current_direction if current_direction is None else require_per_item(
+            owner, "current_direction", current_direction, k)
+        if np.any(current_speeds < 0.0):
+            raise ValueError(f"{owner}.current_speed must be >= 0 [m/s], got {current_speed!r}")
         foil_scales = require_rows(owner, "foil_scale", np.ones(3) if foil_scale is None else foil_scale, k, 3)
         if np.any(foil_scales < 0.0):
             raise ValueError(f"{owner}.foil_scale must be >= 0, got {foil_scale!r}")
@@ -220,7 +235,8 @@ class EBoatSimulator:
         n = self.count
         for name, values in (("position", positions), ("orientation", orientations), ("velocity", velocities),
                              ("sheet", sheets), ("wind_speed", speeds), ("wind_direction", directions),
-                             ("gust_scale", gust_scales), ("foil_scale", foil_scales),
+                             ("gust_scale", gust_scales), ("current_speed", current_speeds),
+                             ("current_direction", current_directions), ("foil_scale", foil_scales),
                              ("noise_scale", noise_scales)):
             getattr(self.start, name).assign(rows_at(indices, values, n))
         with ordered_with_torch(self.device):
@@ -228,7 +244,8 @@ class EBoatSimulator:
 
     def reset_masked(self, mask: wp.array, start: EBoatStart | None = None) -> None:
         """Device path of every reset: each boat whose ``mask`` (N,) int32 is non-zero goes to its row of
-        ``start`` (default ``self.start``): pose, velocity, sheet and its environment's mean wind, with
+        ``start`` (default ``self.start``): pose, velocity, sheet, its environment's mean wind and steady
+        current (evaluated, tide included, at the simulator's time), with
         flags, external wrenches, slamming history, rudder, boom, propeller and gusts cleared, its foil
         factors and sensor-noise factor set, a new IMU bias drawn (with that noise factor), and every
         sensor channel read at once from the new state. Boats not in the mask are
@@ -237,6 +254,7 @@ class EBoatSimulator:
         start = start if start is not None else self.start
         self.fleet.reset_masked(mask, start.position, start.orientation, start.velocity)
         self.wind.reset_masked(mask, start.wind_speed, start.wind_direction, start.gust_scale)
+        self.current.reset_masked(mask, start.current_speed, start.current_direction)
         self.rig.reset_masked(mask, start.sheet, start.foil_scale)
         self.sensors.reset_masked(mask, self.fleet, start.noise_scale)
 
@@ -248,7 +266,7 @@ class EBoatSimulator:
         self.sensors.restart_stream()
 
     def step(self) -> None:
-        """Advance ``config.dt``: ocean, hull, wind, rig and integration every substep, sensors once (a
+        """Advance ``config.dt``: ocean, current, hull, wind, rig and integration every substep, sensors once (a
         CUDA graph after the first call; ordered with torch's work on the device)."""
         self.simulator.step()
 

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ..current_config import CurrentConfig
 from ..hydrodynamics_config import HydrodynamicsConfig
 from ..ocean_config import OceanConfig
 from ..sensors import SensorConfig
@@ -39,6 +40,9 @@ class EBoatSimulatorConfig:
     """The sea and its water (default: still sea water)."""
     wind: WindConfig = dataclasses.field(default_factory=WindConfig)
     """Mean wind, gusts and height profile (every environment starts with this mean)."""
+    current: CurrentConfig = dataclasses.field(default_factory=CurrentConfig)
+    """The water's current: steady speed and direction, tide, depth profile (default: none; every environment
+    starts with this one)."""
     sensors: SensorConfig = dataclasses.field(default_factory=SensorConfig)
     """Noise and rates of the boat's sensors."""
     hydrodynamics: HydrodynamicsConfig | None = None
@@ -46,7 +50,7 @@ class EBoatSimulatorConfig:
     dt: float = 0.05
     """Duration of one ``step()`` [s]; the sensors read once per step."""
     substeps: int = 5
-    """Substeps per step: ocean, water forces, wind, rig and integration run every dt / substeps."""
+    """Substeps per step: ocean, current, water forces, wind, rig and integration run every dt / substeps."""
     ocean_every_substep: bool = True
     """Evaluate the ocean every substep (True) or once per step (False, cheaper)."""
     max_tilt: float = math.pi / 2
@@ -73,7 +77,8 @@ class EBoatSimulatorConfig:
         if self.hydrodynamics is None and isinstance(self.boat, EBoatConfig):
             object.__setattr__(self, "hydrodynamics", eboat_hydrodynamics(self.boat.profile))
         for name, kind in (("boat", EBoatConfig), ("ocean", OceanConfig), ("wind", WindConfig),
-                           ("sensors", SensorConfig), ("hydrodynamics", HydrodynamicsConfig)):
+                           ("current", CurrentConfig), ("sensors", SensorConfig),
+                           ("hydrodynamics", HydrodynamicsConfig)):
             if not isinstance(getattr(self, name), kind):
                 raise ValueError(f"{owner}.{name} must be a {kind.__name__}, got {getattr(self, name)!r}")
         object.__setattr__(self, "dt", require_positive(owner, "dt", self.dt, unit=" [s]"))

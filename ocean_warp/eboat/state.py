@@ -45,7 +45,8 @@ class EBoatState(_Named):
     status: Any
     """(N,) int32: ``BoatStatus`` bits; 0 is a healthy boat. Flags stay until a reset."""
     water_velocity: Any
-    """(N,) vec3: the water's orbital velocity at the boat's origin, body frame [m/s]."""
+    """(N,) vec3: the water's velocity at the boat's origin, body frame [m/s]: the waves' orbital velocity and
+    the current (the boat's velocity through the water is ``velocity`` minus it)."""
     rudder_angle: Any
     """(N,) actual rudder angle [rad]; positive turns the boat to port."""
     sheet_limit: Any
@@ -66,6 +67,12 @@ class EBoatState(_Named):
     """(N,) vec3: current true wind at the reference height, world frame [m/s]."""
     gust_scale: Any
     """(N,) factor on the wind config's gust standard deviations per environment."""
+    current_speed: Any
+    """(N,) steady speed of each environment's current at the surface [m/s] (its tide comes on top)."""
+    current_direction: Any
+    """(N,) where each environment's current sets toward, from +x counter-clockwise [rad]."""
+    current_velocity: Any
+    """(N,) vec3: the current at the surface now, tide included, world frame [m/s]."""
     foil_scale: Any
     """(N,) vec3: factors on the lift and drag coefficients of each boat's (sail, keel, rudder) this
     episode (1: as tabulated)."""
@@ -114,6 +121,10 @@ class EBoatStart(_Named):
     """(N,) new mean true wind direction (towards) [rad]."""
     gust_scale: Any
     """(N,) factor on the wind config's gust standard deviations (1: as configured)."""
+    current_speed: Any
+    """(N,) new steady speed of the current [m/s]."""
+    current_direction: Any
+    """(N,) new direction the current sets toward [rad]."""
     foil_scale: Any
     """(N,) vec3: factors on the lift and drag coefficients of the (sail, keel, rudder) (1: as tabulated)."""
     noise_scale: Any
@@ -121,7 +132,8 @@ class EBoatStart(_Named):
 
     @classmethod
     def allocate(cls, count: int, device) -> "EBoatStart":
-        """Upright boats at rest at the world origin, sheeted in, in calm air, foils and sensors as configured."""
+        """Upright boats at rest at the world origin, sheeted in, in calm air and still water, foils and sensors
+        as configured."""
         upright = np.tile(np.array([0.0, 0.0, 0.0, 1.0], dtype=np.float32), (count, 1))
         return cls(position=wp.zeros(count, dtype=wp.vec3, device=device),
                    orientation=wp.array(upright, dtype=wp.quat, device=device),
@@ -130,6 +142,8 @@ class EBoatStart(_Named):
                    wind_speed=wp.zeros(count, dtype=float, device=device),
                    wind_direction=wp.zeros(count, dtype=float, device=device),
                    gust_scale=wp.ones(count, dtype=float, device=device),
+                   current_speed=wp.zeros(count, dtype=float, device=device),
+                   current_direction=wp.zeros(count, dtype=float, device=device),
                    foil_scale=wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=device),
                    noise_scale=wp.ones(count, dtype=float, device=device))
 

@@ -21,6 +21,7 @@ time) each boat publishes:
   gps/fix                       sensor_msgs/NavSatFix       WGS 84 (the world origin in Guanabara Bay)
   imu/data                      sensor_msgs/Imu             attitude, gyro, accelerometer (base_link, FLU)
   wind/true, wind/apparent      geometry_msgs/Vector3Stamped true wind in map, apparent in base_link [m/s]
+  current                       geometry_msgs/Vector3Stamped the water's current at the surface, in map [m/s]
   lidar/scan                    sensor_msgs/LaserScan       with a lidar (the avoidance tasks, or --lidar)
   camera/image_raw, camera/camera_info, camera/depth/...    with --camera
   mission_control/episode       std_msgs/Float32MultiArray  when an episode ends: success, waypoints,

@@ -27,6 +27,9 @@ imu/data                            sensor_msgs/msg/Imu              attitude (t
 wind/true                           geometry_msgs/msg/Vector3Stamped true wind velocity in ``map`` [m/s]
 wind/apparent                       geometry_msgs/msg/Vector3Stamped the vane and anemometer reading: apparent
                                                                      wind velocity in ``base_link`` [m/s]
+current                             geometry_msgs/msg/Vector3Stamped the water's current at the surface where
+                                                                     the boat sails (tide included) in ``map``
+                                                                     [m/s]; zero in still water
 camera/image_raw                    sensor_msgs/msg/Image            RGB, "rgb8" (with an RGB camera)
 camera/camera_info                  sensor_msgs/msg/CameraInfo       its pinhole model
 camera/depth/image_raw              sensor_msgs/msg/Image            depth along the optical axis [m], "32FC1"
@@ -49,7 +52,8 @@ at z = 0), ``base_link`` the boat's body frame, FLU (x forward, y to port, z up;
 lidar's ``lidar_link`` its sensor frame (beams' azimuths counter-clockwise from its x), the camera's
 ``camera_link`` its link frame (x along the view) and ``camera_optical_frame`` the image's (z forward, x right,
 y down). Where the values come from: the seed's observations, the seed's wind, true wind and tf from the
-simulator's truth (as the seed's task sees it, ``envs/tasks/task_kernels.observe``); the GNSS fix, the IMU's
+simulator's truth (as the seed's task sees it, ``envs/tasks/task_kernels.observe``), the current from the
+simulator's truth too (no sensor measures it); the GNSS fix, the IMU's
 rates and accelerations and the apparent wind from the noisy sensor readings (``ocean_warp.sensors``, held
 between refreshes at the sensors' rates), with their configured standard deviations (times the boat's noise
 factor) as covariances; the IMU's orientation is the true attitude (the simulated IMU has no attitude filter;
@@ -113,6 +117,7 @@ BOAT_TOPICS = {
     "imu/data": IMU,
     "wind/true": VECTOR3_STAMPED,
     "wind/apparent": VECTOR3_STAMPED,
+    "current": VECTOR3_STAMPED,
     "camera/image_raw": IMAGE,
     "camera/camera_info": CAMERA_INFO,
     "camera/depth/image_raw": IMAGE,
@@ -220,6 +225,8 @@ class BoatSnapshot:
     """(N, 3) world position of each boat's current waypoint [m]."""
     wind_velocity: np.ndarray
     """(N, 3) true wind at the reference height, world frame [m/s]."""
+    current_velocity: np.ndarray
+    """(N, 3) the water's current at the surface, world frame [m/s] (zero in still water)."""
     truth: np.ndarray
     """(N, 16) exact sensor channels (``ocean_warp.CHANNEL_NAMES``)."""
     readings: np.ndarray
@@ -251,7 +258,8 @@ def snapshot(env, time_offset_ns: int = 0) -> BoatSnapshot:
     return BoatSnapshot(
         time_ns=int(round(float(state.time.numpy()[0]) * 1e9)) + int(time_offset_ns), position=host(state.position),
         orientation=orientation, velocity=host(state.velocity), target=host(env.target_world),
-        wind_velocity=host(state.wind_velocity), truth=host(state.truth), readings=host(state.readings),
+        wind_velocity=host(state.wind_velocity), current_velocity=host(state.current_velocity),
+        truth=host(state.truth), readings=host(state.readings),
         boom_angle=host(state.boom_angle), rudder_angle=host(state.rudder_angle),
         propeller_level=host(env.propeller_level), noise_scale=host(state.noise_scale),
         sensor_std=np.asarray(env.simulator.sensors.config.channel_noise(), dtype=np.float64))
@@ -274,8 +282,8 @@ def seed_observation_values(s: BoatSnapshot) -> np.ndarray:
 
 def state_messages(s: BoatSnapshot, *, prefix: str = "", datum: GeodeticDatum = GUANABARA_BAY) -> list[Message]:
     """The messages of the state ``s`` (no commands, sensors that see or static transforms): per boat the seed's
-    observations and wind, the GNSS fix, the IMU, the true and apparent wind; and ``/tf`` with every boat's
-    pose. Each stamped at ``s.time_ns``."""
+    observations and wind, the GNSS fix, the IMU, the true and apparent wind, the current; and ``/tf`` with every
+    boat's pose. Each stamped at ``s.time_ns``."""
     t, n = s.time_ns, s.count
     observations = seed_observation_values(s)
     geodetic = enu_to_geodetic(s.readings[:, 0:3], datum)
@@ -307,6 +315,8 @@ def state_messages(s: BoatSnapshot, *, prefix: str = "", datum: GeodeticDatum = 
                     {"header": _header(t, MAP_FRAME), "vector": _vector(s.wind_velocity[boat])}),
             Message(f"{ns}/wind/apparent", VECTOR3_STAMPED, t,
                     {"header": _header(t, base), "vector": _vector(apparent)}),
+            Message(f"{ns}/current", VECTOR3_STAMPED, t,
+                    {"header": _header(t, MAP_FRAME), "vector": _vector(s.current_velocity[boat])}),
         ]
         transforms.append(_transform(t, odom, base, s.position[boat], s.orientation[boat]))
     messages.append(Message(TF, TF_MESSAGE, t, {"transforms": transforms}))

@@ -38,6 +38,8 @@ from ocean_warp.sensors import SensorConfig  # noqa: E402
 HUMBLE = get_typestore(Stores.ROS2_HUMBLE)
 """rosbags' own ROS 2 Humble definitions: the messages must decode with them, not only with the file's."""
 BOATS, DECISIONS = 3, 5
+CURRENT_SPEED = (0.2, 0.6)
+"""Range of the current the recorded run draws per episode [m/s]."""
 A, F = 6378137.0, 1.0 / 298.257223563  # WGS 84
 E2 = F * (2.0 - F)
 
@@ -45,10 +47,12 @@ E2 = F * (2.0 - F)
 # --- a recorded run -----------------------------------------------------------------------------------
 def _task():
     """Obstacle avoidance on the seed twin's four-point boat (fast on the CPU), noisy sensors with a noise factor
-    drawn per boat, the buoys 10-40 m ahead (within the lidar's 50 m) and 3 s episodes (a restart at t = 3 s)."""
+    drawn per boat, a current of 0.2-0.6 m/s drawn per episode, the buoys 10-40 m ahead (within the lidar's 50 m)
+    and 3 s episodes (a restart at t = 3 s)."""
     avoid = AvoidConfig()
     simulator = dataclasses.replace(WaypointConfig().simulator, sensors=SensorConfig())
-    start = dataclasses.replace(avoid.start, waypoint_distance=(100.0, 100.0), sensor_noise_scale=(0.5, 1.5))
+    start = dataclasses.replace(avoid.start, waypoint_distance=(100.0, 100.0), sensor_noise_scale=(0.5, 1.5),
+                                current_speed=CURRENT_SPEED)
     return dataclasses.replace(avoid, simulator=simulator, start=start, episode_time=3.0,
                                obstacles=ObstacleLayoutConfig(along_track=(0.1, 0.4)))
 
@@ -80,6 +84,8 @@ def _host_state(env) -> dict:
             "propeller_level": b.propeller_level.cpu().numpy().copy(),
             "readings": state.readings.numpy().astype(np.float64).copy(),
             "noise_scale": state.noise_scale.numpy().astype(np.float64).copy(),
+            "current_speed": state.current_speed.numpy().astype(np.float64).copy(),
+            "current_direction": state.current_direction.numpy().astype(np.float64).copy(),
             "ranges": lidar.range_array.numpy().copy(), "kinds": lidar.kind_array.numpy().copy()}
 
 
@@ -169,6 +175,7 @@ def test_topics_types_and_counts(run, bag):
             f"{n}/imu/data": ("sensor_msgs/msg/Imu", records),
             f"{n}/wind/true": ("geometry_msgs/msg/Vector3Stamped", records),
             f"{n}/wind/apparent": ("geometry_msgs/msg/Vector3Stamped", records),
+            f"{n}/current": ("geometry_msgs/msg/Vector3Stamped", records),
             f"{n}/camera/image_raw": ("sensor_msgs/msg/Image", captures),
             f"{n}/camera/camera_info": ("sensor_msgs/msg/CameraInfo", captures),
             f"{n}/camera/depth/image_raw": ("sensor_msgs/msg/Image", captures),
@@ -359,6 +366,13 @@ def test_imu_wind_and_tf(run, bag):
             v = apparent.vector
             np.testing.assert_allclose(math.hypot(v.x, v.y), reading[14], atol=1e-6)
             np.testing.assert_allclose(math.atan2(-v.y, -v.x), reading[13], atol=1e-6)  # where it comes from
+            # The current in map: the episode's draw, speed toward direction (steady: the run has no tide).
+            current = messages[f"{_ns(boat)}/current"][k][1]
+            assert current.header.frame_id == "map"
+            speed, direction = state["current_speed"][boat], state["current_direction"][boat]
+            assert CURRENT_SPEED[0] <= speed <= CURRENT_SPEED[1]
+            np.testing.assert_allclose([current.vector.x, current.vector.y, current.vector.z],
+                                       [speed * math.cos(direction), speed * math.sin(direction), 0.0], atol=1e-6)
             pose = transforms[f"eboat_{boat}/base_link"]
             assert pose.header.frame_id == f"eboat_{boat}/odom"
             t, r = pose.transform.translation, pose.transform.rotation
@@ -560,7 +574,8 @@ def test_topic_builders_give_ros2_field_names():
     state = topics.BoatSnapshot(
         time_ns=1_500_000_000, position=rng.normal(size=(n, 3)), orientation=np.tile([0.0, 0.0, 0.0, 1.0], (n, 1)),
         velocity=rng.normal(size=(n, 6)), target=rng.normal(size=(n, 3)), wind_velocity=rng.normal(size=(n, 3)),
-        truth=rng.normal(size=(n, 16)), readings=rng.normal(size=(n, 16)), boom_angle=rng.normal(size=n),
+        current_velocity=rng.normal(size=(n, 3)), truth=rng.normal(size=(n, 16)), readings=rng.normal(size=(n, 16)),
+        boom_angle=rng.normal(size=n),
         rudder_angle=rng.normal(size=n), propeller_level=np.array([3, -2]), noise_scale=np.ones(n),
         sensor_std=SensorConfig().channel_noise().astype(np.float64))
     built = topics.state_messages(state, prefix="/x") + topics.command_messages(0, [0.1, 0.2], [0.3, 0.4], [1, 2])

@@ -364,6 +364,10 @@ def test_bus_on_fake_rclpy(fake_ros2, published):
         assert publisher.qos.reliability == "reliable" and publisher.qos.history == "keep_last"
         assert len(publisher.sent) == sum(1 for m in published if bus.name(m.topic) == publisher.name)
     assert len(by_name["/tf_static"].sent) == 1 and by_name["/tf_static"].sent[0].transforms
+    for boat in range(2):  # the current, in map: the task's still water (no current by default)
+        (current,) = by_name[f"eboat_{boat}/current"].sent
+        assert type(current).__name__ == "Vector3Stamped" and current.header.frame_id == "map"
+        assert (current.vector.x, current.vector.y, current.vector.z) == (0.0, 0.0, 0.0)
 
     # unlatched topics without subscribers are not converted; latched ones are
     for publisher in node.publishers:

@@ -136,8 +136,8 @@ def test_an_unknown_remapping_is_one_line_and_status_2(master):
 
 # --- the node ---------------------------------------------------------------------------------------------
 STATE_TOPICS = ("mission_control/observations", "atmosferic_control/wind", "gps/fix", "imu/data", "true_wind",
-                "wind/apparent", "lidar/scan", "camera/image_raw", "camera/camera_info", "camera/depth/image_raw",
-                "camera/depth/camera_info")
+                "wind/apparent", "current", "lidar/scan", "camera/image_raw", "camera/camera_info",
+                "camera/depth/image_raw", "camera/depth/camera_info")
 """The boat's topics the node publishes every decision (wind/true remapped to true_wind)."""
 RATE_FACTOR = 10.0
 
@@ -188,6 +188,7 @@ def test_node_publishes_obeys_commands_resets_and_records(master, tmp_path):
             arrived = _in_window(messages[topic], low + 1, high - 1, 0)
             assert abs(len(arrived) - (len(expected) - 2)) <= 1, (topic, len(arrived), len(expected))
     assert watched["types"]["/eboat/true_wind"] == "geometry_msgs/Vector3Stamped"
+    assert watched["types"]["/eboat/current"] == "geometry_msgs/Vector3Stamped"
     assert watched["types"]["/eboat/lidar/scan"] == "sensor_msgs/LaserScan"
 
     # a rudder command moves the rudder (the observations' rudder angle [deg]); NaN is ignored; reset
@@ -217,7 +218,7 @@ def _check_log(path: Path) -> None:
         for connection, _, raw in reader.messages():
             seen.setdefault(connection.topic, []).append(reader.deserialize(raw, connection.msgtype))
     for topic in ("/clock", "/tf", "/tf_static", "/eboat/gps/fix", "/eboat/imu/data", "/eboat/lidar/scan",
-                  "/eboat/camera/image_raw", "/eboat/mission_control/observations"):
+                  "/eboat/camera/image_raw", "/eboat/mission_control/observations", "/eboat/current"):
         assert topic in seen, (topic, sorted(seen))
     # one boat's time runs on through the reset: no second boat in a replay
     clock = [message.clock.sec + message.clock.nanosec * 1e-9 for message in seen["/clock"]]
