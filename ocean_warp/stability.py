@@ -10,8 +10,9 @@ Host side, numpy float64: the triangles are clipped exactly at the plane (``hull
 the volume and its first moments closed with the divergence theorem; the waterplane adds nothing to them
 (depth 0, vertical normal). :class:`Appendages` the mesh leaves out (a keel fin and bulb, a rudder) add their
 volume's buoyancy at its turned centroid, fading out as the centroid nears the surface exactly as the
-simulator's ``kernels.appendage_buoyancy`` has it; the mesh carries the rest of the mass. Heel is a rotation about +x (port side up, ``frames.roll_pitch_yaw``'s roll);
-trim is a rotation about +y after it (bow down), so body -> world is R_y(trim) R_x(heel).
+simulator's ``kernels.appendage_buoyancy`` has it; the mesh carries the rest of the mass. Heel is a rotation
+about +x (port side up, ``frames.roll_pitch_yaw``'s roll); trim is a rotation about +y after it (bow down), so
+body -> world is R_y(trim) R_x(heel).
 """
 
 from __future__ import annotations

@@ -10,7 +10,9 @@ import numpy as np
 import warp as wp
 
 from ..boat_type import BoatType
+from ..hull import Hull
 from ..hydrodynamics_config import HydrodynamicsConfig
+from ..kernels.appendage_buoyancy import AppendageBuoyancy
 from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
 from ..kernels.sailing_rig import RigParameters
@@ -20,8 +22,6 @@ from ..sail import Mainsail
 from ..stability import Appendages
 from ..validation import require_choice
 from ..water_config import WaterConfig
-from ..hull import Hull
-from ..kernels.appendage_buoyancy import AppendageBuoyancy
 from .geometry import PROCEDURAL_MAST_LENGTH, Ballast, EBoatGeometry, HullKind, eboat_geometry, eboat_lifting_surfaces
 from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull, resolution_for_budget
 from .mass_properties import MassProperties, eboat_mass_properties
@@ -392,7 +392,7 @@ class EBoat:
         return 0.5 * (low + high)
 
     def waterline_length(self, waterline_z: float = 0.0) -> float:
-        """Length [m] of the hull where the plane z = ``waterline_z`` (base frame) cuts it."""
+        """Length [m] of the hull where the plane z = ``waterline_z`` (body frame) cuts it."""
         vertices = self.hull.vertices
         edges = self.hull.to_trimesh().edges_unique
         z0, z1 = vertices[edges[:, 0], 2] - waterline_z, vertices[edges[:, 1], 2] - waterline_z

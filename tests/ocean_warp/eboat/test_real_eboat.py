@@ -17,6 +17,7 @@ from scipy.spatial.transform import Rotation
 
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat.offsets_hull import parse_hull_offsets
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.eboat.urdf_links import urdf_links
 from ocean_warp.frames import roll_pitch_yaw
@@ -71,6 +72,43 @@ def test_offsets_hull_is_closed_outward_and_where_the_cad_has_it(eboat):
     bow = hull.vertices[np.isclose(hull.vertices[:, 0], high[0])]
     assert np.ptp(bow[:, 2]) > 0.39
     assert np.ptp(bow[:, 1]) == pytest.approx(0.16, abs=0.03)
+
+
+def section(triangles: np.ndarray, x: float) -> np.ndarray:
+    """(S, 2, 2) segments (y, z) [m] where the mesh's triangles cross the plane at body ``x``."""
+    side = triangles[:, :, 0] >= x
+    cut = triangles[(side.sum(axis=1) == 1) | (side.sum(axis=1) == 2)]
+    ends, crossings = [], []
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        pa, pb = cut[:, a], cut[:, b]
+        crosses = (pa[:, 0] >= x) != (pb[:, 0] >= x)
+        t = (x - pa[:, 0]) / np.where(crosses, pb[:, 0] - pa[:, 0], 1.0)
+        ends.append(pa[:, 1:] + t[:, None] * (pb[:, 1:] - pa[:, 1:]))
+        crossings.append(crosses)
+    return np.stack(ends, axis=1)[np.stack(crossings, axis=1)].reshape(-1, 2, 2)
+
+
+def half_breadth(segments: np.ndarray, z: float) -> float:
+    """Largest y [m] of the section ``segments`` at height ``z`` [m]."""
+    spans = ((segments[:, 0, 1] - z) * (segments[:, 1, 1] - z) <= 0.0) & (np.ptp(segments[:, :, 1], axis=1) > 1e-12)
+    seg = segments[spans]
+    t = (z - seg[:, 0, 1]) / (seg[:, 1, 1] - seg[:, 0, 1])
+    return float(np.max(seg[:, 0, 0] + t * (seg[:, 1, 0] - seg[:, 0, 0])))
+
+
+@pytest.mark.parametrize("station, bottom, offsets", [
+    (1.0, -0.4321, {-0.400: 0.4031, -0.300: 0.4210, -0.200: 0.4387, -0.100: 0.4563}),
+    (2.0, -0.4247, {-0.400: 0.1828, -0.300: 0.2003, -0.200: 0.2177, -0.100: 0.2342}),
+])
+def test_loft_passes_through_the_offsets_table(eboat, station, bottom, offsets):
+    """The default mesh cut at two of the table's stations (CAD x 1.0 and 2.0 m; rows typed from
+    hull_offsets.csv): the bottom's height and the half-breadths at four waterlines, within 1.5 mm (the loft's
+    stations fall between the table's: measured within 0.9 mm; the sides flare 3.6 mm per 20 mm waterline)."""
+    triangles = eboat.hull.vertices[eboat.hull.triangles].astype(np.float64)
+    cut = section(triangles, station + CAD_TO_BASE_X)
+    assert cut[:, :, 1].min() - (CAD_TO_BASE_Z + BASE_Z) == pytest.approx(bottom, abs=0.0015)
+    for z, expected in offsets.items():
+        assert half_breadth(cut, z + CAD_TO_BASE_Z + BASE_Z) == pytest.approx(expected, abs=0.0015)
 
 
 def test_floats_where_the_sheet_measured_it(eboat):
@@ -251,3 +289,17 @@ def test_real_boat_rests_upright_near_its_origin_in_the_simulator(device):
     roll, pitch, _ = roll_pitch_yaw(state["orientation"]).T
     assert np.all(np.abs(np.degrees(roll)) < 0.5) and np.all(np.degrees(pitch) < 0.0)
     assert np.all(np.degrees(pitch) > -2.0)
+
+
+def test_bad_offsets_tables_are_refused():
+    good = ("x_m,bottom_z_m,y_at_bottom_plus_3mm,y_at_z-0.200,y_at_z-0.100\n"
+            "0.0,-0.3,0.30,0.32,0.34\n1.0,-0.3,0.30,0.32,0.34\n")
+    assert len(parse_hull_offsets(good).stations) == 2
+    with pytest.raises(ValueError, match="header must start x_m, bottom_z_m, y_at_bottom_plus_3mm"):
+        parse_hull_offsets(good.replace("x_m", "station"))
+    with pytest.raises(ValueError, match="waterline columns must be named y_at_z<height>"):
+        parse_hull_offsets(good.replace("y_at_z-0.100", "y_at_sheer"))
+    with pytest.raises(ValueError, match="HullOffsets.stations must be finite and strictly increasing"):
+        parse_hull_offsets(good.replace("1.0,-0.3", "0.0,-0.3"))
+    with pytest.raises(ValueError, match="the section at x = 1.0 m must have increasing heights"):
+        parse_hull_offsets(good.replace("1.0,-0.3,", "1.0,-0.15,"))
