@@ -35,7 +35,8 @@ class EBoatSimulatorConfig:
     """
 
     boat: EBoatConfig = dataclasses.field(default_factory=EBoatConfig)
-    """Which E-Boat (version, mesh or four-point hydrostatics, original tuning, hull shape)."""
+    """Which E-Boat (version, profile, mesh or four-point hydrostatics, the real or the procedural hull, ballast,
+    original tuning)."""
     ocean: OceanConfig = dataclasses.field(default_factory=still_water)
     """The sea and its water (default: still sea water)."""
     wind: WindConfig = dataclasses.field(default_factory=WindConfig)

@@ -18,15 +18,19 @@ from pxr import Usd, UsdGeom  # noqa: E402
 
 import ocean_warp as ow  # noqa: E402
 from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
-from ocean_warp.eboat.sheet import BOOM_HEIGHT, HULL_LINK_HEIGHT, MAST_STEP
 from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, record_eboat,
                             render_preview, validate_stage, write_ocean_loop)
 
 FPS = 5.0
 EVERY = 4  # record every 4th step of dt 0.05 s: 5 frames per second of simulated time
 TCPS = 24.0  # the stages' default time codes per second: time code = time [s] x 24, Blender's frame rate
-BOOM_PIVOT = np.array([MAST_STEP[0], 0.0, BOOM_HEIGHT])
-RUDDER_PIVOT = np.array([-1.086, 0.0, HULL_LINK_HEIGHT + 0.076])  # sheet: rudder joint in the hull link frame
+# The real boat's pivots, the URDF's joints (eboat4.urdf.xacro): the hull link 0.210586 m above the base frame,
+# the mast joint (0.59529, 0, -0.153011) on it and the boom joint (-0.049, 0, 0.933) on the mast; the rudder
+# joint (-1.08641, 0, 0.0764342) on the hull link. The body frame lies 0.094 m above the base frame (sheet, real
+# geometry: the waterline at base z +0.094).
+BASE_Z = -0.094
+BOOM_PIVOT = np.array([0.59529 - 0.049, 0.0, 0.210586 - 0.153011 + 0.933 + BASE_Z])
+RUDDER_PIVOT = np.array([-1.08641, 0.0, 0.210586 + 0.0764342 + BASE_Z])
 INSTANCERS = {"Body": "Bodies", "Boom": "Booms", "Rudder": "Rudders"}
 
 
@@ -141,9 +145,10 @@ def test_stage_validates_with_every_option(tmp_path):
     assert normals[:, 2].min() > 0.5
     buoys = stage.GetPrimAtPath("/World/Route/Waypoints").GetChildren()
     assert [b.GetDisplayName() for b in buoys] == ["A", "B"]
-    # The prototype hull is the E-Boat's 2.5 m (data sheet, length overall) by 1.0 m.
+    # The prototype hull is the real E-Boat's 2.489 m by 0.958 m at the sheer (sheet, real geometry).
     hull = np.array(UsdGeom.Mesh.Get(stage, "/Library/EBoat/Body/Hull").GetPointsAttr().Get())
-    assert np.ptp(hull[:, 0]) == pytest.approx(2.5, abs=0.01) and np.ptp(hull[:, 1]) == pytest.approx(1.0, abs=0.01)
+    assert np.ptp(hull[:, 0]) == pytest.approx(2.489, abs=0.001)
+    assert np.ptp(hull[:, 1]) == pytest.approx(0.958, abs=0.003)
 
 
 def test_exception_while_recording_leaves_nothing(tmp_path):

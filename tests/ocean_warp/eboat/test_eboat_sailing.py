@@ -44,7 +44,11 @@ def test_boom_swings_to_leeward_within_the_sheet_limit(device):
     sim.tensors.control.sheet[:] = math.radians(50)
     run(sim, 1.0)
     assert sim.state.sheet_limit.numpy() == pytest.approx([0.5, 0.5], abs=1e-5)  # 0.5 rad/s for 1 s
-    run(sim, 3.0)
+    # The limit reaches 50 deg at 1.75 s; the boom follows it out to leeward and stops there, never beyond.
+    # (Later, with no yaw damping but the foils' and hull's, the boats round up from rest and the sail luffs.)
+    for _ in range(int(round(1.5 / sim.config.dt))):
+        sim.step()
+        assert np.all(np.abs(sim.state.boom_angle.numpy()) <= sim.state.sheet_limit.numpy() + 1e-6)
     boom = sim.state.boom_angle.numpy()
     np.testing.assert_allclose(boom, [math.radians(50), -math.radians(50)], atol=1e-4)  # at the limit, leeward
 
@@ -128,8 +132,8 @@ def test_full_thrust_speed_is_where_thrust_meets_the_towing_resistance(device):
 def test_seed_profile_reproduces_the_speeds_measured_before_the_physics_profile(device):
     """Issue 19 measured the earlier default (the seed's forces on the mesh hull) in still water, CPU:
     24 / 48 / 72 / 96 / 120 N of thrust gave 0.68 / 1.01 / 1.28 / 1.51 / 1.71 m/s. The seed profile must
-    still give them (the figures are rounded to 0.01 m/s)."""
-    boat = EBoatConfig(profile=Profile.SEED, hydrostatics=Hydrostatics.MESH)
+    still give them (the figures are rounded to 0.01 m/s) on that mesh hull, the procedural canoe."""
+    boat = EBoatConfig(profile=Profile.SEED, hydrostatics=Hydrostatics.MESH, hull="procedural")
     sim = EBoatSimulator(EBoatSimulatorConfig(boat=boat, wind=CALM), 5, device=device)
     sim.reset(position=[[0.0, 20.0 * i, 0.05] for i in range(5)])
     sim.tensors.control.propeller[:] = sim.tensors.control.propeller.new_tensor([1, 2, 3, 4, 5])
