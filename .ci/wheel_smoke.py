@@ -10,6 +10,7 @@ import sys
 
 import ocean_warp
 from ocean_warp.eboat.eboat import load_foil_table
+from ocean_warp.eboat.offsets_hull import load_hull_offsets
 from ocean_warp.envs.training.policies import SHIPPED_POLICIES, shipped_policy_path
 from ocean_warp.envs.training.policy_io import load_policy
 
@@ -28,8 +29,10 @@ if missing:
     sys.exit(f"wheel smoke: files of the source's packages the wheel did not install: {', '.join(missing)}")
 
 table = load_foil_table()
+offsets = load_hull_offsets()
 for task in SHIPPED_POLICIES:
     path = shipped_policy_path(task)
     load_policy(path, task=task)
-print(f"wheel smoke: ocean_warp from {installed}; foil table {table.shape}; "
+print(f"wheel smoke: ocean_warp from {installed}; foil table {table.shape}; hull offsets at "
+      f"{len(offsets.stations)} stations; "
       f"{len(SHIPPED_POLICIES)} shipped policies load ({', '.join(SHIPPED_POLICIES)})")

@@ -2,13 +2,16 @@
 propeller), rebuilt from the data sheet of its original Gazebo model."""
 
 from .eboat import EBoat, EBoatConfig, Hydrostatics, Profile, eboat_hydrodynamics, load_foil_table
+from .geometry import Ballast, EBoatGeometry, HullKind
 from .hull_shape import HullShape, eboat_hull
+from .offsets_hull import offsets_hull
 from .mass_properties import MassProperties, eboat_mass_properties
 from .sheet import Version
 from .eboat_simulator import EBoatSimulator, SailingRig
 from .simulator_config import EBoatSimulatorConfig, still_water
 from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
 
-__all__ = ["EBoat", "EBoatConfig", "Hydrostatics", "Profile", "Version", "EBoatSimulator", "EBoatSimulatorConfig", "EBoatState",
-           "EBoatControl", "EBoatStart", "EBoatTensors", "SailingRig", "HullShape", "eboat_hull", "MassProperties",
-           "eboat_mass_properties", "load_foil_table", "eboat_hydrodynamics", "still_water"]
+__all__ = ["EBoat", "EBoatConfig", "Hydrostatics", "Profile", "Version", "EBoatSimulator", "EBoatSimulatorConfig",
+           "EBoatState", "EBoatControl", "EBoatStart", "EBoatTensors", "SailingRig", "HullShape", "eboat_hull",
+           "HullKind", "Ballast", "EBoatGeometry", "offsets_hull", "MassProperties", "eboat_mass_properties",
+           "load_foil_table", "eboat_hydrodynamics", "still_water"]

@@ -15,19 +15,28 @@ from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
 from ..kernels.sailing_rig import RigParameters
 from ..hull_form import HullForm, Topsides, floating_waterline, measure_hull_form, measure_topsides
-from ..lifting_surface import LiftingSurface
 from ..resistance import DEFAULT_FORM_FACTOR, ResiduaryResistance
 from ..sail import Mainsail
 from ..validation import require_choice
 from ..water_config import WaterConfig
-from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull
+from ..hull import Hull
+from ..kernels.appendage_buoyancy import AppendageBuoyancy
+from .geometry import PROCEDURAL_MAST_LENGTH, Ballast, EBoatGeometry, HullKind, eboat_geometry, eboat_lifting_surfaces
+from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull, resolution_for_budget
 from .mass_properties import MassProperties, eboat_mass_properties
-from .sheet import ACTUATORS, BOOM_HEIGHT, ENVIRONMENT, FOILS, LINKS, MAST_STEP, VRX, FoilFigures, Version
+from .offsets_hull import DEFAULT_SECTION_POINTS, DEFAULT_STATIONS, offsets_hull
+from .sheet import ACTUATORS, ENVIRONMENT, FOILS, VRX, Version
 
-__all__ = ["Profile", "Hydrostatics", "EBoatConfig", "EBoat", "load_foil_table", "eboat_hydrodynamics"]
+__all__ = ["Profile", "Hydrostatics", "HullKind", "Ballast", "EBoatConfig", "EBoat", "load_foil_table",
+           "eboat_hydrodynamics", "eboat_hull_mesh", "eboat_lifting_surfaces"]
 
-MAST_LENGTH = 3.55
-"""Sheet, mast row [m]."""
+MAST_LENGTH = PROCEDURAL_MAST_LENGTH
+"""Sheet, mast row [m]: the procedural boat's mast (the real one's: ``EBoat.geometry.mast_length``)."""
+SEA_WATER_DENSITY = 1025.0
+"""[kg/m^3]: the water of the hull's form at rest (``EBoat.hull_form``)."""
+APPENDAGE_FADE_HEIGHT = 0.5
+"""The appendages' buoyancy fades in as their centroid sinks through this band about the surface [m]
+(assumed; about the keel's and rudder's depth, so that a capsized or airborne boat loses it)."""
 WINDAGE_AREA = 0.5
 """Seed profile: drag area C_D A of the mast, rigging and topsides [m^2], any wind direction (assumed, not
 on the sheet): the 3.55 x 0.1 m mast as a cylinder (C_D about 1.2, 0.43 m^2) and a little of the hull
@@ -78,13 +87,24 @@ class EBoatConfig:
     """Apply V-C's tuning hacks (sheet: sail lift held above 100 deg, foil lift zero above 90 deg,
     rudder force x 0.3, keel minus 0.6 of the sail's side force, sail force x 0.1 outside 5-160 deg).
     They are not physics: off by default."""
+    hull: HullKind | str = HullKind.REAL
+    """"real" (default): the F-Boat as its CAD has it (hull lofted from the offsets table, links where the
+    URDF's joint chain puts them, the real keel fin and bulb, rudder and sail; origin on the real waterline
+    at rest); "procedural": the canoe body with the sheet's link table at assumed heights, the boat the
+    shipped policies were trained on (see ``ocean_warp.eboat.geometry``)."""
+    ballast: Ballast | str = Ballast.CAD
+    """The real boat's keel: "cad" (default: the URDF's 40.04 kg spread through fin and bulb) or "lead_bulb"
+    (an assumption, not a fact: a 44 kg lead bulb on a solid GRP fin, 10.8 kg heavier, its centre of gravity
+    0.03-0.05 m below the waterline as the sheet estimates). Only with ``hull`` "real"."""
     hull_shape: HullShape = dataclasses.field(default_factory=HullShape)
-    """Dimensions of the procedural canoe body."""
+    """Dimensions of the procedural canoe body (``hull`` "procedural" only)."""
     hull_triangles: int | None = None
-    """Triangle budget of the physics hull (at least 40): the same shape meshed with fewer or more stations
-    and section points (:meth:`HullShape.with_triangle_budget`), for speed over detail; None (default):
-    ``hull_shape`` as it is (2 024 triangles). With a budget, ``hull_shape`` must keep the default
-    resolution, which the budget replaces. ``benchmarks/studies/hull_fidelity.py`` measures what a budget costs."""
+    """Triangle budget of the physics hull (at least 40), for either hull: the same shape meshed with fewer or
+    more stations and section points (``hull_shape.resolution_for_budget``: at most the budget, the stations
+    about 44 / 12 of the section points), for speed over detail; None (default): 44 stations of 12 points,
+    2 024 triangles (the procedural hull: ``hull_shape`` as it is). With a budget, ``hull_shape`` must keep
+    the default resolution, which the budget replaces. ``benchmarks/studies/hull_fidelity.py`` measures what a
+    budget costs."""
 
     def __post_init__(self):
         object.__setattr__(self, "version", require_choice("EBoatConfig", "version", self.version, Version))
@@ -96,6 +116,17 @@ class EBoatConfig:
                                                                 Hydrostatics))
         if not isinstance(self.original_tuning, bool):
             raise ValueError(f"EBoatConfig.original_tuning must be True or False, got {self.original_tuning!r}")
+        object.__setattr__(self, "hull", require_choice("EBoatConfig", "hull", self.hull, HullKind))
+        object.__setattr__(self, "ballast", require_choice("EBoatConfig", "ballast", self.ballast, Ballast))
+        if not isinstance(self.hull_shape, HullShape):
+            raise ValueError(f"EBoatConfig.hull_shape must be a HullShape, got {self.hull_shape!r}")
+        if self.hull is HullKind.REAL:
+            if self.hull_shape != HullShape():
+                raise ValueError("EBoatConfig.hull_shape shapes the procedural hull; with hull 'real' leave it at "
+                                 "its default (or choose hull='procedural')")
+        elif self.ballast is not Ballast.CAD:
+            raise ValueError(f"EBoatConfig.ballast {self.ballast.value!r} changes the real boat's keel; the "
+                             "procedural hull has only the sheet's link table ('cad')")
         self._check_hull_triangles()
 
     def _check_hull_triangles(self) -> None:
@@ -113,10 +144,31 @@ class EBoatConfig:
 
     @property
     def meshed_hull_shape(self) -> HullShape:
-        """``hull_shape`` at the resolution the physics hull is built with (``hull_triangles``'s, if set)."""
+        """``hull_shape`` at the resolution the procedural hull is built with (``hull_triangles``'s, if set)."""
         if self.hull_triangles is None:
             return self.hull_shape
         return self.hull_shape.with_triangle_budget(int(self.hull_triangles))
+
+    @property
+    def hull_resolution(self) -> tuple[int, int]:
+        """(stations, section_points) of the physics hull: ``hull_triangles``'s, else the default (44, 12; the
+        procedural hull: ``hull_shape``'s); its triangles number stations x (4 section_points - 2)."""
+        if self.hull is HullKind.PROCEDURAL:
+            shape = self.meshed_hull_shape
+            return shape.stations, shape.section_points
+        if self.hull_triangles is None:
+            return DEFAULT_STATIONS, DEFAULT_SECTION_POINTS
+        return resolution_for_budget(int(self.hull_triangles))
+
+
+def eboat_hull_mesh(config: EBoatConfig, detail: int = 1) -> Hull:
+    """The hull mesh of ``config`` in its body frame, lofted with ``detail`` times as many stations and section
+    points as the physics hull (1: the physics hull itself)."""
+    stations, section_points = config.hull_resolution
+    if config.hull is HullKind.PROCEDURAL:
+        return eboat_hull(dataclasses.replace(config.meshed_hull_shape, stations=stations * detail,
+                                              section_points=section_points * detail))
+    return offsets_hull(stations * detail, section_points * detail)
 
 
 def load_foil_table() -> np.ndarray:
@@ -148,18 +200,6 @@ EBOAT_HYDRODYNAMICS = {
 }
 
 
-def eboat_lifting_surfaces(figures: FoilFigures) -> tuple[LiftingSurface, LiftingSurface]:
-    """The keel and rudder as lifting surfaces. Keel: the sheet's area on its wetted span (FoilFigures),
-    NACA 0012-like (t/c 0.12, as the VPP inputs), its root on the hull (an end plate: effective aspect
-    ratio twice the geometric). Rudder: the sheet's area on its box's chord, t/c 0.12, hung at the
-    transom with its top at the free surface, which is no wall at speed (end-plate factor 1)."""
-    root, tip = figures.keel_chords
-    keel = LiftingSurface(span=figures.keel_span, root_chord=root, tip_chord=tip, end_plate_factor=2.0)
-    chord = figures.rudder_chord
-    rudder = LiftingSurface(span=figures.rudder_span, root_chord=chord, tip_chord=chord, end_plate_factor=1.0)
-    return keel, rudder
-
-
 class EBoat:
     """Everything about the E-Boat that does not change while it sails: its :class:`BoatType` (hull
     mesh, composite mass properties, added mass, damping), its rig (sail, keel, rudder, propeller,
@@ -168,18 +208,24 @@ class EBoat:
     def __init__(self, config: EBoatConfig | None = None):
         self.config = config if config is not None else EBoatConfig()
         version = self.config.version
-        self.mass_properties: MassProperties = eboat_mass_properties(version)
-        self.hull = eboat_hull(self.config.meshed_hull_shape)
+        self.geometry: EBoatGeometry = eboat_geometry(self.config.hull, version, self.config.ballast)
+        """Where the parts are (links, rig, keel and rudder, propeller, appendages), body frame."""
+        self.mass_properties: MassProperties = eboat_mass_properties(version, self.geometry.links)
+        self.hull = eboat_hull_mesh(self.config)
         vrx = VRX[version]
         if self.config.hydrostatics is Hydrostatics.POINTS:
             damping = dict(linear_damping=vrx.linear_damping, quadratic_damping=vrx.quadratic_damping,
                            astern_surge_factor=vrx.astern_surge_factor)
         else:
-            # The mesh model damps surge, sway and heave itself; the sheet's roll, pitch and yaw terms stand
-            # in for the appendages' and rig's damping that the mesh does not see.
-            damping = dict(linear_damping=(0.0, 0.0, 0.0) + tuple(vrx.linear_damping[3:]))
+            # The mesh model damps surge, sway and heave itself; the sheet's roll and pitch terms stand in for
+            # the appendages' and rig's damping that the mesh does not see. Yaw: the physics profile's keel,
+            # rudder (lifting surfaces) and hull (cross flow) damp it, so the sheet's N_r is not added again.
+            rotational = tuple(vrx.linear_damping[3:])
+            if self.config.profile is Profile.PHYSICS:
+                rotational = rotational[:2] + (0.0,)
+            damping = dict(linear_damping=(0.0, 0.0, 0.0) + rotational)
         mp = self.mass_properties
-        waterline = floating_waterline(self.hull, mp.mass)
+        waterline = floating_waterline(self.hull, self.hull_load(SEA_WATER_DENSITY))
         self.hull_form: HullForm = measure_hull_form(self.hull, waterline)
         """The canoe body's form below its waterline at rest, upright, in sea water (1025 kg/m^3)."""
         physics = self.config.profile is Profile.PHYSICS
@@ -190,42 +236,52 @@ class EBoat:
         self.hydrodynamics = eboat_hydrodynamics(self.config.profile)
         """The water model of this profile, in sea water (the simulator's config sets the density)."""
         self.foil_table = load_foil_table()
-        self.masthead = np.array([MAST_STEP[0], 0.0, MAST_STEP[2] + MAST_LENGTH])
+        self.masthead = self.geometry.masthead
         """Top of the mast in the body frame [m]: vane and anemometer."""
         self.rig_figures = FOILS[version]
         self.vrx = vrx
-        self.keel, self.rudder = eboat_lifting_surfaces(self.rig_figures)
+        self.keel, self.rudder = self.geometry.keel, self.geometry.rudder
         """The physics profile's keel and rudder (:class:`LiftingSurface`)."""
         deck = float(self.hull.vertices[:, 2].max())
-        self.mainsail = Mainsail(area=self.rig_figures.sail_area, luff=float(self.masthead[2]) - BOOM_HEIGHT,
-                                 boom_above_deck=BOOM_HEIGHT - deck)
-        """The physics profile's main (:class:`Mainsail`): luff from the boom to the masthead, boom above
-        the deck's highest point."""
+        geometry = self.geometry
+        self.mainsail = Mainsail(area=self.rig_figures.sail_area,
+                                 luff=geometry.sail_head_height - geometry.sail_foot_height,
+                                 boom_above_deck=geometry.sail_foot_height - deck)
+        """The physics profile's main (:class:`Mainsail`): luff from its foot to its head, its foot above the
+        deck's highest point."""
         self.topsides: Topsides = measure_topsides(self.hull, waterline)
         """The hull above its waterline at rest, as the wind sees it (the physics profile's windage)."""
+
+    def hull_load(self, density: float) -> float:
+        """Mass [kg] the hull mesh carries at rest in water of ``density`` [kg/m^3]: the boat's, less what
+        the appendages outside the mesh (keel fin, bulb, rudder) displace."""
+        return self.mass_properties.mass - density * self.geometry.appendage_volume
 
     @property
     def boom_inertia(self) -> float:
         """Boom and sail about the mast [kg m^2]: the boom as a 1.8 m rod from the mast (sheet), the sail
         as a triangle on it (foot 1.8 m, centroid 0.6 m aft; assumed)."""
-        boom = next(link for link in LINKS if link.name == "boom").mass
-        sail = next(link for link in LINKS if link.name == "sail").mass
+        boom = next(link for link in self.geometry.links if link.name == "boom").mass
+        sail = next(link for link in self.geometry.links if link.name == "sail").mass
         return boom * 1.8**2 / 3 + sail * (0.6**2 + 1.8**2 / 18)
 
     def rig_parameters(self, water_density: float) -> RigParameters:
-        """The rig's device struct for water of ``water_density`` [kg/m^3] (keel and rudder)."""
-        figures, act = self.rig_figures, ACTUATORS
+        """The rig's device struct for water of ``water_density`` [kg/m^3] (keel and rudder). The physics
+        profile's foils act where the boat has them (the real boat's lift at each foil's quarter chord); the
+        seed profile's where the sheet puts them (base frame)."""
+        figures, act, geometry = self.rig_figures, ACTUATORS, self.geometry
         rig = RigParameters()
-        rig.mast_step = wp.vec3(MAST_STEP[0], MAST_STEP[1], MAST_STEP[2])
+        rig.mast_step = wp.vec3(*geometry.mast_step)
         rig.sail_arm = figures.sail_arm
-        rig.sail_height = figures.sail_center_height
-        rig.sail_area = figures.sail_area
         physics = self.config.profile is Profile.PHYSICS
-        rig.keel_center = wp.vec3(*(figures.keel_center_of_area if physics else figures.keel_center))
-        rig.keel_area = figures.keel_area
-        rig.rudder_center = wp.vec3(*figures.rudder_center)
-        rig.rudder_area = figures.rudder_area
-        rig.propeller_position = wp.vec3(*act["propeller_position"])
+        rig.sail_height = geometry.sail_center_height if physics else figures.sail_center_height + geometry.base_z
+        rig.sail_area = figures.sail_area
+        rig.keel_center = wp.vec3(*(geometry.keel_center if physics else geometry.from_base(figures.keel_center)))
+        rig.keel_area = self.keel.area if physics else figures.keel_area
+        rig.rudder_center = wp.vec3(*(geometry.rudder_center if physics
+                                      else geometry.from_base(figures.rudder_center)))
+        rig.rudder_area = self.rudder.area if physics else figures.rudder_area
+        rig.propeller_position = wp.vec3(*geometry.propeller_position)
         rig.thrust_per_level = act["thrust_per_level"]
         rig.reverse_factor = act["reverse_factor"]
         rig.max_level = act["propeller_levels"]
@@ -243,7 +299,7 @@ class EBoat:
             rig.windage_center = wp.vec3(*self.topsides.center_abeam)
         else:
             rig.windage_area_ahead = rig.windage_area_abeam = WINDAGE_AREA
-            rig.windage_center = wp.vec3(MAST_STEP[0], 0.0, WINDAGE_HEIGHT)
+            rig.windage_center = wp.vec3(*geometry.from_base((geometry.mast_step[0], 0.0, WINDAGE_HEIGHT)))
         tuned = self.config.original_tuning
         rig.sail_lift_limit = np.radians(100.0 if tuned else 180.0)
         rig.foil_lift_limit = np.radians(90.0 if tuned else 180.0)
@@ -271,18 +327,36 @@ class EBoat:
         return tables
 
     def point_buoyancy(self, device, water: WaterConfig) -> PointBuoyancy:
-        """The original twin's four buoyancy points (sheet: x = +-0.6, y = +-0.45 m, R 0.4 m, L 2.4 m)."""
+        """The original twin's four buoyancy points (sheet: x = +-0.6, y = +-0.45 m, R 0.4 m, L 2.4 m; at the
+        base frame's height, which the real boat's body frame puts 0.094 m below its origin)."""
         model = PointBuoyancy()
-        model.points = wp.array(np.array(self.vrx.points, dtype=np.float32), dtype=wp.vec3, device=device)
+        points = np.array([self.geometry.from_base(point) for point in self.vrx.points], dtype=np.float32)
+        model.points = wp.array(points, dtype=wp.vec3, device=device)
         model.radius = self.vrx.hull_radius
         model.slice_length = self.vrx.hull_length / 2.0
         model.density = water.density
         model.gravity = water.gravity
         return model
 
+    def appendage_buoyancy(self, water: WaterConfig) -> AppendageBuoyancy | None:
+        """The buoyancy of the appendages outside the hull mesh (keel fin, bulb, rudder) in ``water``, for the
+        mesh hydrostatics (``kernels.appendage_buoyancy``); None where the geometry counts none (the procedural
+        hull)."""
+        geometry = self.geometry
+        if geometry.appendage_volume <= 0.0:
+            return None
+        model = AppendageBuoyancy()
+        model.volume = geometry.appendage_volume
+        model.center = wp.vec3(*geometry.appendage_center)
+        model.fade_height = APPENDAGE_FADE_HEIGHT
+        model.density = water.density
+        model.gravity = water.gravity
+        return model
+
     def rest_height(self, device="cpu", water: WaterConfig | None = None) -> float:
-        """Height [m] of the base frame above still ``water`` (default sea water) when the boat floats
-        upright at rest (found by bisection on the vertical force of the hull pass, without drag)."""
+        """Height [m] of the body origin above still ``water`` (default sea water) when the boat floats
+        upright at rest on its mesh (found by bisection on the vertical force of the hull pass, without drag,
+        with the appendages' buoyancy)."""
         from ..fleet import Fleet
         from ..ocean import Ocean
         from ..ocean_config import OceanConfig
@@ -294,7 +368,7 @@ class EBoat:
                       device=device)
         simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=self.hydrodynamics.without_drag()))
         low, high = -0.5, 0.5
-        weight = self.boat_type.mass * water.gravity
+        weight = self.hull_load(water.density) * water.gravity
         for _ in range(40):
             middle = 0.5 * (low + high)
             fleet.reset(position=[0.0, 0.0, middle])

@@ -23,12 +23,15 @@ class MassProperties:
 
 
 def link_inertia(link: Link) -> np.ndarray:
-    """(3, 3) inertia of a link about its own centre of mass [kg m^2]: the sheet's figures, or those of
+    """(3, 3) inertia of a link about its own centre of mass [kg m^2]: the sheet's or the URDF's figures, or those of
     the link's shape (mast: cylinder; boom: rod; sail: thin triangle; rudder: box), or zero for the
     small parts taken as point masses."""
     m = link.mass
     if link.inertia is not None:
-        ixx, iyy, izz, ixz = link.inertia
+        inertia = np.asarray(link.inertia, dtype=np.float64)
+        if inertia.shape == (3, 3):
+            return inertia
+        ixx, iyy, izz, ixz = inertia
         return np.array([[ixx, 0.0, ixz], [0.0, iyy, 0.0], [ixz, 0.0, izz]])
     if link.name == "mast":  # sheet: cylinder r 0.05 m, 3.55 m long, along z
         r, length = 0.05, 3.55
@@ -58,10 +61,11 @@ def composite(links) -> MassProperties:
     return MassProperties(total, center, inertia)
 
 
-def eboat_mass_properties(version: Version) -> MassProperties:
-    """The E-Boat of ``version``: the link table, with V-A's lighter total taken off the hull."""
-    links = list(LINKS)
+def eboat_mass_properties(version: Version, links=LINKS) -> MassProperties:
+    """The E-Boat of ``version`` from its ``links`` (default: the sheet's table, the procedural boat's; the
+    real boat's: ``EBoatGeometry.links``), with V-A's lighter total taken off the hull link."""
+    links = list(links)
     if version is Version.A:
-        hull = links[0]
-        links[0] = dataclasses.replace(hull, mass=hull.mass + LINK_MASS_DIFFERENCE_V_A)
+        hull = next(i for i, link in enumerate(links) if link.name == "hull")
+        links[hull] = dataclasses.replace(links[hull], mass=links[hull].mass + LINK_MASS_DIFFERENCE_V_A)
     return composite(links)

@@ -35,13 +35,14 @@ TOTAL_MASS = {Version.A: 154.2, Version.B: 158.4, Version.C: 158.4}
 
 @dataclasses.dataclass(frozen=True)
 class Link:
-    """One rigid part: mass [kg], centre of mass in the base frame [m], inertia about its own centre of
-    mass [kg m^2] as (ixx, iyy, izz, ixz) or None for a shape-derived one, and where the figures come from."""
+    """One rigid part: mass [kg], centre of mass in the base frame [m] (or the body frame, where a table says
+    so), inertia about its own centre of mass [kg m^2] as (ixx, iyy, izz, ixz), as a full (3, 3) tensor in
+    the frame's axes, or None for a shape-derived one, and where the figures come from."""
 
     name: str
     mass: float
     center_of_mass: tuple[float, float, float]
-    inertia: tuple[float, float, float, float] | None
+    inertia: tuple | None
     source: str
 
 
@@ -84,8 +85,9 @@ LINKS = (
          "sheet, other links: mass; position assumed (starboard side, mirroring port)"),
     Link("camera", 2.07, _hull_link(0.9, 0.0, 0.25), None, "sheet, other links: mass; position assumed (forward)"),
 )
-"""The link table of the sheet ("Geometry and mass"). Links without an inertia on the sheet get one from
-their shape (see ``mass_properties``) or, for the small parts, count as point masses."""
+"""The link table of the sheet ("Geometry and mass"), the procedural boat's: several heights assumed. The real
+boat's links sit where the URDF's joint chain puts them (``urdf_links``). Links without an inertia on the
+sheet get one from their shape (see ``mass_properties``) or, for the small parts, count as point masses."""
 
 LINK_MASS_DIFFERENCE_V_A = -4.2
 """V-A's total is 4.2 kg lighter (154.2 vs 158.4 kg); the sheet does not say which link differs, so
