@@ -32,7 +32,7 @@ FORMAT_VERSION = 1
 FORMAT_NAME = "ocean_warp hydrodynamic database"
 MAX_TERM_ORDER = 12
 """The most states one radiation term may have."""
-_SIGNIFICANT_DIGITS = 9
+_SIGNIFICANT_DIGITS = 7
 """Digits kept of the BEM's coefficients in the file (the BEM is good to a few per cent)."""
 
 

@@ -19,7 +19,9 @@ frequency domain by a rational function P(s)/Q(s) of order n (2 to 6) that is
 
 The fit is realised as a balanced state-space block (a, b, c): dx/dt = a x + b nu[col], mu[row] += c x. The
 order is the lowest one whose error (the RMS of |K_fit - K| over the fitted frequencies, relative to the RMS of
-|K|) is within ``tolerance``, else the lowest one within 5 % of the best order's error.
+|K|) is within ``tolerance``, else the lowest one within 5 % of the best order's error; orders whose poles lie
+far outside the fitted frequencies (slower than half the lowest, faster than twenty times the highest), which
+no data constrain, are passed over where another order qualifies.
 """
 
 from __future__ import annotations
@@ -44,6 +46,10 @@ DIAGONAL_THRESHOLD = 1e-3
 sphere's yaw, say)."""
 COUPLING_THRESHOLD = 0.05
 """A coupling (row != col) is fitted where its largest |K| is at least this fraction of sqrt(max|K_rr| max|K_cc|)."""
+SLOWEST_POLE = 0.5
+"""A fit's poles must be at least this fraction of the lowest fitted frequency (in magnitude) ..."""
+FASTEST_POLE = 20.0
+"""... and at most this multiple of the highest, where an order meets that; else every order is a candidate."""
 _SK_ITERATIONS = 40
 
 
@@ -236,10 +242,16 @@ def fit_kernel(frequencies, kernel, *, orders=ORDERS, tolerance: float = DEFAULT
         a, b, c = balanced(omega_scale * a, omega_scale * b, magnitude * c)
         candidates[order] = (a, b, c, _relative_error(kernel_response(a, b, c, w), data))
     errors = {order: candidate[3] for order, candidate in candidates.items()}
-    best = min(errors.values())
-    chosen = next((order for order in orders if errors[order] <= tolerance), None)
+    # A pole far slower or faster than the data's frequencies is constrained by none of them: an artefact of the
+    # least squares (a near-cancelled pole at 0.04 rad/s fitted 0.3-9 rad/s would remember heave for minutes).
+    admissible = [order for order in orders
+                  if np.all((np.abs(np.linalg.eigvals(candidates[order][0])) >= SLOWEST_POLE * w.min())
+                            & (np.abs(np.linalg.eigvals(candidates[order][0])) <= FASTEST_POLE * w.max()))]
+    admissible = admissible or list(orders)
+    best = min(errors[order] for order in admissible)
+    chosen = next((order for order in admissible if errors[order] <= tolerance), None)
     if chosen is None:
-        chosen = next(order for order in orders if errors[order] <= 1.05 * best)
+        chosen = next(order for order in admissible if errors[order] <= 1.05 * best)
     a, b, c, error = candidates[chosen]
     return KernelFit(row=row, col=col, a=a, b=b, c=c, error=error, errors_by_order=errors)
 

@@ -51,7 +51,8 @@ def _product_integral(area: np.ndarray, f: np.ndarray, g: np.ndarray) -> np.ndar
 
 
 def hydrostatic_stiffness(hull: Hull, rest_height: float, mass: float, center_of_mass, *,
-                          water_density: float = 1025.0, gravity: float = 9.81) -> np.ndarray:
+                          water_density: float = 1025.0, gravity: float = 9.81, appendage_volume: float = 0.0,
+                          appendage_center=(0.0, 0.0, 0.0)) -> np.ndarray:
     """(6, 6) linear hydrostatic and gravity restoring matrix C about the body origin of ``hull`` floating upright
     with its origin ``rest_height`` [m] above still water, holding ``mass`` [kg] with its centre at
     ``center_of_mass`` (3,) [m] (body frame). With Awp the waterplane's area, Sx and Sy its first moments and
@@ -63,7 +64,10 @@ def hydrostatic_stiffness(hull: Hull, rest_height: float, mass: float, center_of
         C45 = C54 = -rho g Ixy  C46 = -rho g V x_B + m g x_G    C56 = -rho g V y_B + m g y_G
 
     The waterplane integrals come from the wet skin by the divergence theorem (over the plane, f dA equals
-    -f n_z dS over the skin, for f independent of z); the hull needs no waterplane of its own."""
+    -f n_z dS over the skin, for f independent of z); the hull needs no waterplane of its own. Parts always under
+    water outside the mesh (a keel fin and bulb, a rudder: ``appendage_volume`` [m^3] centred at
+    ``appendage_center`` (3,) [m]) add their buoyancy's terms, rho g V_a z_a to C44 and C55, -rho g V_a x_a to
+    C46 and -rho g V_a y_a to C56."""
     waterline = -float(rest_height)
     triangles = hull.vertices[hull.triangles].astype(np.float64)
     wet = clip_triangles(triangles, waterline - triangles[:, :, 2])
@@ -93,6 +97,11 @@ def hydrostatic_stiffness(hull: Hull, rest_height: float, mass: float, center_of
     c[3, 4] = c[4, 3] = -rg * second_xy
     c[3, 5] = -rg * volume * x_b + mg * x_g
     c[4, 5] = -rg * volume * y_b + mg * y_g
+    x_a, y_a, z_a = (float(v) for v in appendage_center)
+    c[3, 3] += rg * appendage_volume * z_a
+    c[4, 4] += rg * appendage_volume * z_a
+    c[3, 5] -= rg * appendage_volume * x_a
+    c[4, 5] -= rg * appendage_volume * y_a
     return c
 
 
@@ -101,7 +110,11 @@ def response_amplitude_operators(database: HydroDatabase, mass_matrix, stiffness
     """(F, 6) complex RAOs at the database's frequencies for waves of heading ``heading_deg`` (one of the
     database's excitation headings; 180 head seas, 90 beam seas), of the hull with ``mass_matrix`` (6, 6) and
     ``stiffness`` (6, 6) about its body origin (:func:`rigid_body_mass_matrix`, :func:`hydrostatic_stiffness`)
-    and optionally ``extra_damping`` (6, 6) (viscous roll damping, say). See the module's docstring."""
+    and optionally ``extra_damping`` (6, 6) (viscous roll damping, say). See the module's docstring.
+
+    Give M and C of an equilibrium: a centre of mass that is not over the centre of buoyancy leaves C46 and
+    C56 nonzero, which couple yaw (no stiffness of its own) into roll and pitch (the E-Boat, upright, has its
+    centre of mass 4 cm aft of its hull's and appendages' centre of buoyancy: it trims 0.6 deg by the stern)."""
     if database.excitation is None:
         raise ValueError(f"database of hull {database.hull_name!r} holds no excitation forces")
     headings = np.degrees(database.excitation_headings)

@@ -94,8 +94,8 @@ def test_coarse_hull_reciprocity_and_symmetry(coarse_eboat):
             diagonal = np.diagonal(db.damping, axis1=1, axis2=2).max(axis=0) if name == "damping" else np.diag(matrix)
             scaled = _scaled(matrix, diagonal)
             # reciprocity holds to the panels' discretisation: 5 % at worst on these 180 panels (roll-yaw damping
-            # at 4.8 rad/s; the E-Boat's shipped database, about 1 000 panels, is held to 2 % in
-            # test_eboat_hydro_database.py)
+            # at 4.8 rad/s), about as much on the E-Boat's 1 052 (test_eboat_hydro_database.py); it halves when
+            # the panels are halved
             assert np.max(np.abs(scaled - scaled.T)) < 0.07, (name, db.frequencies[k])
             forbidden = scaled[np.ix_(SYMMETRIC, ANTISYMMETRIC)]
             assert np.max(np.abs(forbidden)) < 0.01, (name, db.frequencies[k])

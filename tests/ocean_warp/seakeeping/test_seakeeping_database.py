@@ -139,8 +139,8 @@ def test_save_and_load_round_trip(box, tmp_path):
     assert json.loads(path.read_text())["format_version"] == FORMAT_VERSION == 1
     loaded = HydroDatabase.load(path, hull=box)
     assert loaded.hull_name == "box" and loaded.rest_height == db.rest_height
-    for name in ("frequencies", "added_mass", "damping", "added_mass_infinite", "excitation"):
-        np.testing.assert_allclose(getattr(loaded, name), getattr(db, name), rtol=1e-8, atol=1e-12)
+    for name in ("frequencies", "added_mass", "damping", "added_mass_infinite", "excitation"):  # 7 digits kept
+        np.testing.assert_allclose(getattr(loaded, name), getattr(db, name), rtol=5e-7, atol=1e-12)
     np.testing.assert_allclose(loaded.excitation_headings, db.excitation_headings, rtol=1e-12)
     omega = np.geomspace(0.1, 50, 20)
     np.testing.assert_array_equal(loaded.radiation_force_response(omega), db.radiation_force_response(omega))
