@@ -1,11 +1,12 @@
 """A hull's hydrodynamic database from potential flow, computed offline with capytaine.
 
-    ocean-warp bem                                               # the E-Boat's physics hull at its mass
+    ocean-warp bem                                               # the E-Boat's physics hull at its rest
     ocean-warp bem --hull hull.stl --mass 160 --out out/bem/hull.json
     ocean-warp bem --hull hull.obj --rest-height 0.05            # its body origin 5 cm above still water
 
 The hull floats upright, its body origin at the rest height above still water (given, or where it displaces
---mass). Its mesh is cut at the free surface, a lid on the inner waterplane removes the irregular
+--mass; without --hull, the E-Boat's hull displacing the boat's mass less what its keel, bulb and rudder
+displace). Its mesh is cut at the free surface, a lid on the inner waterplane removes the irregular
 frequencies, and at each frequency (by default 50, log-spaced from 0.3 to 30 rad/s) capytaine solves the six
 radiation problems of the rigid body about the body origin, at zero speed in deep water, and the diffraction
 problems of the --headings (head and beam seas); then the radiation problems at infinite frequency. The
@@ -65,12 +66,13 @@ def _hull_from_file(parser, path: str, scale: float):
         fail(parser, f"--hull {path}: {error}")
 
 
-def _eboat_hull_and_mass():
-    """The E-Boat's default physics hull and its mass [kg]."""
+def _eboat_hull_and_masses(density: float):
+    """The E-Boat's default physics hull, the mass [kg] its mesh carries at rest in water of ``density`` (the
+    boat's, less what the keel fin, bulb and rudder outside the mesh displace) and the boat's mass [kg]."""
     from ocean_warp.eboat import EBoat
 
     eboat = EBoat()
-    return eboat.hull, float(eboat.mass_properties.mass)
+    return eboat.hull, float(eboat.hull_load(density)), float(eboat.mass_properties.mass)
 
 
 def _summary(result, hull, mass: float) -> list[str]:
@@ -122,9 +124,10 @@ def main(argv=None) -> int:
         require_capytaine()
     except ImportError:
         fail(parser, f"capytaine is not installed: {INSTALL_HINT}")
+    inertial_mass = None  # what moves with the hull, where it is not the mass it floats (the E-Boat's appendages)
     if args.hull is None:
-        hull, eboat_mass = _eboat_hull_and_mass()
-        mass = args.mass if args.mass is not None or args.rest_height is not None else eboat_mass
+        hull, load, inertial_mass = _eboat_hull_and_masses(args.density)
+        mass = args.mass if args.mass is not None or args.rest_height is not None else load
     else:
         hull, mass = _hull_from_file(parser, args.hull, args.scale), args.mass
     out = args.out if args.out is not None else os.path.join(DEFAULT_OUT_FOLDER, f"{hull.name}.json")
@@ -144,7 +147,7 @@ def main(argv=None) -> int:
         from ocean_warp.hull_form import displaced_volume
 
         mass = displaced_volume(hull, -rest_height) * args.density
-    print("\n".join(_summary(result, hull, mass)))
+    print("\n".join(_summary(result, hull, inertial_mass if inertial_mass is not None else mass)))
     print(f"wrote {out} ({os.path.getsize(out) / 1024:.0f} kB)")
     return 0
 

@@ -27,7 +27,8 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument("--scale", type=float, default=1.0, help="multiplies the mesh's coordinates (0.001 for mm)")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--mass", type=float, metavar="KG",
-                       help="the hull floats upright holding this mass [kg] (default with the E-Boat: its mass)")
+                       help="the hull floats upright holding this mass [kg] (default with the E-Boat: its mass "
+                            "less the water its keel, bulb and rudder displace)")
     where.add_argument("--rest-height", type=float, metavar="M",
                        help="height of the body origin above still water [m], instead of --mass")
     parser.add_argument("--out", metavar="FILE", help=f"the database (JSON) (default: {DEFAULT_OUT_FOLDER}/<hull "
