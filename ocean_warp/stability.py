@@ -8,7 +8,9 @@ of gravity, positive when the buoyancy turns the boat back upright; the righting
 
 Host side, numpy float64: the triangles are clipped exactly at the plane (``hull_form``'s clipping) and
 the volume and its first moments closed with the divergence theorem; the waterplane adds nothing to them
-(depth 0, vertical normal). Heel is a rotation about +x (port side up, ``frames.roll_pitch_yaw``'s roll);
+(depth 0, vertical normal). :class:`Appendages` the mesh leaves out (a keel fin and bulb, a rudder) add their
+volume's buoyancy at its turned centroid, fading out as the centroid nears the surface exactly as the
+simulator's ``kernels.appendage_buoyancy`` has it; the mesh carries the rest of the mass. Heel is a rotation about +x (port side up, ``frames.roll_pitch_yaw``'s roll);
 trim is a rotation about +y after it (bow down), so body -> world is R_y(trim) R_x(heel).
 """
 
@@ -23,7 +25,7 @@ from .hull import Hull
 from .hull_form import areas_and_normals, clip_triangles
 from .validation import require_finite, require_in_range, require_positive
 
-__all__ = ["WATER_DENSITY", "RightingArmCurve", "Flotation", "float_heeled", "righting_arm_curve",
+__all__ = ["WATER_DENSITY", "Appendages", "RightingArmCurve", "Flotation", "float_heeled", "righting_arm_curve",
            "heel_under_moment", "equilibrium_heel"]
 
 WATER_DENSITY = 1025.0
@@ -37,6 +39,34 @@ TRIM_TOLERANCE = 1e-9
 
 
 @dataclasses.dataclass(frozen=True)
+class Appendages:
+    """Volume outside a hull mesh that floats with it (keel fin, bulb, rudder): its buoyancy, rho g V share,
+    acts straight up at its centroid, share = clamp(1/2 + depth / fade_height, 0, 1) with depth the centroid's
+    below the still-water plane (1 while it is well under water)."""
+
+    volume: float
+    """V [m^3] (> 0)."""
+    center: tuple
+    """(3,) its centroid, body frame [m]."""
+    fade_height: float
+    """Band about the surface over which the buoyancy fades [m] (> 0)."""
+
+    def __post_init__(self):
+        owner = "Appendages"
+        object.__setattr__(self, "volume", require_positive(owner, "volume", self.volume, unit=" [m^3]"))
+        center = np.asarray(self.center, dtype=np.float64)
+        if center.shape != (3,) or not np.all(np.isfinite(center)):
+            raise ValueError(f"{owner}.center must be 3 finite numbers [m], got {self.center!r}")
+        object.__setattr__(self, "center", tuple(float(v) for v in center))
+        object.__setattr__(self, "fade_height", require_positive(owner, "fade_height", self.fade_height,
+                                                                 unit=" [m]"))
+
+    def share(self, depth: float) -> float:
+        """Fraction of the volume's buoyancy at centroid ``depth`` [m] below the surface."""
+        return min(max(0.5 + depth / self.fade_height, 0.0), 1.0)
+
+
+@dataclasses.dataclass(frozen=True)
 class Flotation:
     """The boat floating at one heel, in the world-aligned frame with its origin at the body origin."""
 
@@ -47,9 +77,9 @@ class Flotation:
     water_level: float
     """Height z of the still-water plane above the body origin [m]."""
     volume: float
-    """Displaced volume [m^3]."""
+    """Displaced volume [m^3], the appendages' share included."""
     center_of_buoyancy: np.ndarray
-    """(3,) [m]."""
+    """(3,) [m], of the hull's and the appendages' displacement together."""
     center_of_gravity: np.ndarray
     """(3,) [m]."""
 
@@ -79,6 +109,8 @@ class RightingArmCurve:
     """Water [kg/m^3]."""
     free_trim: bool
     """Whether the trim was free (else held at 0)."""
+    appendages: Appendages | None = None
+    """What floats with the mesh outside it (None: nothing)."""
 
     def righting_moment(self, gravity: float = 9.81) -> np.ndarray:
         """(H,) m g GZ [N m] under ``gravity`` [m/s^2]."""
@@ -140,20 +172,41 @@ def _bracketed_root(function, low: float, high: float, tolerance: float, what: s
     return 0.5 * (low + high) if high - low < tolerance else middle
 
 
-def _level_for_volume(world: np.ndarray, volume: float) -> float:
-    """Height z [m] of the plane below which ``world`` (T, 3, 3) holds ``volume`` [m^3]."""
+def _level_for_volume(world: np.ndarray, volume: float, appendage_z: float | None = None,
+                      appendages: Appendages | None = None) -> float:
+    """Height z [m] of the plane below which ``world`` (T, 3, 3), with ``appendages``' share at the height
+    ``appendage_z`` [m], displaces ``volume`` [m^3]."""
     low, high = float(world[:, :, 2].min()), float(world[:, :, 2].max())
-    return _bracketed_root(lambda level: _submerged(world, level)[0] - volume, low, high, LEVEL_TOLERANCE,
-                           "float_heeled (water level)")
+
+    def surplus(level: float) -> float:
+        extra = 0.0 if appendages is None else appendages.volume * appendages.share(level - appendage_z)
+        return _submerged(world, level)[0] + extra - volume
+
+    if appendages is not None:
+        low = min(low, appendage_z - 0.5 * appendages.fade_height)
+        high = max(high, appendage_z + 0.5 * appendages.fade_height)
+    return _bracketed_root(surplus, low, high, LEVEL_TOLERANCE, "float_heeled (water level)")
 
 
-def _balance(triangles: np.ndarray, center_of_mass: np.ndarray, volume: float, heel: float,
-             trim: float) -> Flotation:
-    """Flotation at ``heel`` and ``trim`` [rad] with the plane carrying ``volume`` [m^3]."""
+def _balance(triangles: np.ndarray, center_of_mass: np.ndarray, volume: float, heel: float, trim: float,
+             appendages: Appendages | None = None) -> Flotation:
+    """Flotation at ``heel`` and ``trim`` [rad] with the plane carrying ``volume`` [m^3], ``appendages``'
+    share included."""
     rotation = _rotation(heel, trim)
     world = triangles @ rotation.T
-    level = _level_for_volume(world, volume)
+    if appendages is None:
+        level = _level_for_volume(world, volume)
+        displaced, center, _ = _submerged(world, level)
+        return Flotation(heel, trim, level, displaced, center, rotation @ center_of_mass)
+    turned = rotation @ np.asarray(appendages.center)
+    level = _level_for_volume(world, volume, float(turned[2]), appendages)
     displaced, center, _ = _submerged(world, level)
+    extra = appendages.volume * appendages.share(level - float(turned[2]))
+    if displaced <= 0.0:
+        center, displaced = turned, extra
+    else:
+        center = (displaced * center + extra * turned) / (displaced + extra)
+        displaced += extra
     return Flotation(heel, trim, level, displaced, center, rotation @ center_of_mass)
 
 
@@ -175,39 +228,51 @@ def _checked_heels(owner: str, field: str, heels) -> np.ndarray:
     return array
 
 
+def _checked_appendages(owner: str, appendages) -> Appendages | None:
+    if appendages is not None and not isinstance(appendages, Appendages):
+        raise ValueError(f"{owner}.appendages must be an Appendages or None, got {appendages!r}")
+    return appendages
+
+
 def float_heeled(hull: Hull, mass: float, center_of_mass, heel: float, *, density: float = WATER_DENSITY,
-                 free_trim: bool = True) -> Flotation:
+                 free_trim: bool = True, appendages: Appendages | None = None) -> Flotation:
     """``hull`` holding ``mass`` [kg] with its centre of gravity at ``center_of_mass`` (3,) [m, body frame],
     floating at ``heel`` [rad] in water of ``density`` [kg/m^3]: free in heave, and in trim if
-    ``free_trim`` (else upright fore and aft)."""
+    ``free_trim`` (else upright fore and aft); ``appendages`` outside the mesh float with it."""
     mass, center, density = _checked("float_heeled", mass, center_of_mass, density)
     heel = require_in_range("float_heeled", "heel", heel, 0.0, math.pi, unit=" [rad]")
+    appendages = _checked_appendages("float_heeled", appendages)
     triangles = hull.vertices[hull.triangles].astype(np.float64)
     volume = mass / density
-    if volume >= _submerged(triangles, float(triangles[:, :, 2].max()) + 1e-9)[0]:
+    whole = _submerged(triangles, float(triangles[:, :, 2].max()) + 1e-9)[0]
+    if volume >= whole + (0.0 if appendages is None else appendages.volume):
         raise ValueError(f"float_heeled: the hull's whole volume holds less than mass {mass} kg; it sinks")
     if not free_trim:
-        return _balance(triangles, center, volume, heel, 0.0)
+        return _balance(triangles, center, volume, heel, 0.0, appendages)
 
     def surplus_ahead(trim: float) -> float:
-        state = _balance(triangles, center, volume, heel, trim)
+        state = _balance(triangles, center, volume, heel, trim, appendages)
         return float(state.center_of_buoyancy[0] - state.center_of_gravity[0])
 
     trim = _bracketed_root(surplus_ahead, -MAX_TRIM, MAX_TRIM, TRIM_TOLERANCE, "float_heeled (trim)")
-    return _balance(triangles, center, volume, heel, trim)
+    return _balance(triangles, center, volume, heel, trim, appendages)
 
 
 def righting_arm_curve(hull: Hull, mass: float, center_of_mass, heels, *, density: float = WATER_DENSITY,
-                       free_trim: bool = True) -> RightingArmCurve:
+                       free_trim: bool = True, appendages: Appendages | None = None) -> RightingArmCurve:
     """GZ [m] of ``hull`` holding ``mass`` [kg] with its centre of gravity at ``center_of_mass`` (3,) [m, body
-    frame] at each of ``heels`` (H,) [rad, 0 to pi], free in heave and (``free_trim``) in trim."""
+    frame] at each of ``heels`` (H,) [rad, 0 to pi], free in heave and (``free_trim``) in trim, with
+    ``appendages`` outside the mesh floating with it."""
     mass, center, density = _checked("righting_arm_curve", mass, center_of_mass, density)
     heels = _checked_heels("righting_arm_curve", "heels", heels)
-    states = [float_heeled(hull, mass, center, heel, density=density, free_trim=free_trim) for heel in heels]
+    appendages = _checked_appendages("righting_arm_curve", appendages)
+    states = [float_heeled(hull, mass, center, heel, density=density, free_trim=free_trim, appendages=appendages)
+              for heel in heels]
     return RightingArmCurve(heel=heels, righting_arm=np.array([s.righting_arm for s in states]),
                             trim=np.array([s.trim for s in states]),
                             water_level=np.array([s.water_level for s in states]), mass=mass,
-                            center_of_mass=center, density=density, free_trim=bool(free_trim))
+                            center_of_mass=center, density=density, free_trim=bool(free_trim),
+                            appendages=appendages)
 
 
 def heel_under_moment(curve: RightingArmCurve, moment: float, gravity: float = 9.81) -> float:
@@ -240,7 +305,7 @@ def equilibrium_heel(hull: Hull, curve: RightingArmCurve, moment: float, gravity
 
     def excess(heel: float) -> float:
         state = float_heeled(hull, curve.mass, curve.center_of_mass, heel, density=curve.density,
-                             free_trim=curve.free_trim)
+                             free_trim=curve.free_trim, appendages=curve.appendages)
         return curve.mass * gravity * state.righting_arm - moment
 
     return _bracketed_root(excess, float(curve.heel[upper - 1]), float(curve.heel[upper]), 1e-9, "equilibrium_heel")

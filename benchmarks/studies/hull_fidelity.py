@@ -122,12 +122,17 @@ def equilibrium_height(vertices, triangles, volume: float, turn: np.ndarray | No
 
 def numpy_hydrostatics(eboat: EBoat, water_density: float) -> tuple[float, float]:
     """(rest height [m], GM [m]) of ``eboat``'s hull and mass from the numpy hydrostatics above: the upright
-    waterline carrying its weight, and GZ / sin(HEEL) with the waterline re-found at HEEL."""
+    waterline carrying its weight, and GZ / sin(HEEL) with the waterline re-found at HEEL. The appendages the
+    mesh leaves out (the real boat's keel, bulb and rudder: ``eboat.geometry.appendage_volume``) stay under
+    water and carry their share at their centroid."""
     vertices, triangles = np.asarray(eboat.hull.vertices, np.float64), np.asarray(eboat.hull.triangles)
-    volume = eboat.boat_type.mass / water_density
+    appendages = eboat.geometry.appendage_volume
+    volume = eboat.boat_type.mass / water_density - appendages
     height = equilibrium_height(vertices, triangles, volume)
     heeled = equilibrium_height(vertices, triangles, volume, _heel_matrix(HEEL))
     _, buoyancy_centre = displacement(vertices, triangles, heeled, _heel_matrix(HEEL))
+    appendage_centre = _heel_matrix(HEEL) @ np.asarray(eboat.geometry.appendage_center, np.float64)
+    buoyancy_centre = (volume * buoyancy_centre + appendages * appendage_centre) / (volume + appendages)
     gravity_centre = _heel_matrix(HEEL) @ np.asarray(eboat.boat_type.center_of_mass, np.float64)
     return height, float((gravity_centre[1] - buoyancy_centre[1]) / math.sin(HEEL))
 
@@ -154,6 +159,12 @@ def simulator_gm(eboat: EBoat, rest_height: float) -> float:
     orientations = quaternion_from_roll_pitch_yaw(np.column_stack([heels, np.zeros(2), np.zeros(2)]))
     positions = np.array([-_heel_matrix(h) @ pivot for h in heels])
     wrench = _held(eboat, positions, orientations, np.zeros((2, 6)), drag=False)
+    # The appendages the mesh leaves out (the real boat's), under water: rho g V up at their centroid.
+    water = ow.WaterConfig()
+    lift = water.density * water.gravity * eboat.geometry.appendage_volume
+    wrench[:, :3] += np.array([lift * _heel_matrix(h).T @ np.array([0.0, 0.0, 1.0]) for h in heels])
+    wrench[:, 3:] += np.cross(np.asarray(eboat.geometry.appendage_center),
+                              [lift * _heel_matrix(h).T @ np.array([0.0, 0.0, 1.0]) for h in heels])
     about_centre = wrench[:, 3:] - np.cross(np.asarray(eboat.boat_type.center_of_mass), wrench[:, :3])
     force = np.linalg.norm(wrench[:, :3], axis=1).mean()
     return float(-(about_centre[0, 0] - about_centre[1, 0]) / (2.0 * force * math.sin(HEEL)))

@@ -6,7 +6,8 @@
 1. GZ of the canoe-body mesh (``EBoat().hull``) at 0-90 deg of heel in 5 deg steps, free in heave and
    trim (``ocean_warp.stability``): exact clipping at the still-water plane, the centre of buoyancy by the
    divergence theorem, sea water 1025 kg/m^3, the centre of gravity of the composite mass properties
-   (keel ballast included; the fin and bulb add no buoyancy, as in the simulator). Beside it the same
+   (keel ballast included; the real boat's keel fin, bulb and rudder, outside the mesh, add their
+   displacement's buoyancy at its centroid, as in the simulator). Beside it the same
    with the trim held at 0, and the GZ column of ``shared/eboat/vpp_inputs.json`` (a different,
    parametric hull with its own centre of gravity: compared, not required to agree).
 2. The simulator's steady heel under a known heeling couple: one E-Boat per moment in still water and
@@ -65,19 +66,26 @@ class SteadyHeel:
     """(N,) bool: the heel passed 90 deg at some time."""
 
 
+def appendages(eboat: EBoat) -> dict:
+    """The keyword arguments of ``ocean_warp.stability`` for ``eboat``'s appendages outside its mesh."""
+    return dict(appendages=eboat.appendages)
+
+
 def eboat_curves(eboat: EBoat, heels_deg=HEELS_DEG) -> tuple[RightingArmCurve, RightingArmCurve]:
     """(free in heave and trim, free in heave only) GZ curves of ``eboat``'s mesh at ``heels_deg`` [deg]."""
     mp = eboat.mass_properties
     heels = np.radians(np.asarray(heels_deg, dtype=np.float64))
-    return (righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, heels),
-            righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, heels, free_trim=False))
+    return (righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, heels, **appendages(eboat)),
+            righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, heels, free_trim=False, **appendages(eboat)))
 
 
 def initial_metacentric_height(eboat: EBoat) -> float:
-    """GM [m]: the mesh curve's initial slope, GZ(SMALL_HEEL) / sin(SMALL_HEEL), free in heave and trim."""
+    """GM [m]: the mesh curve's initial slope, (GZ(SMALL_HEEL) - GZ(0) cos(SMALL_HEEL)) / sin(SMALL_HEEL), free
+    in heave and trim (GZ(0): the arm of a centre of gravity off the centre line, as the real boat's 0.17 mm)."""
     mp = eboat.mass_properties
-    curve = righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, [SMALL_HEEL])
-    return float(curve.righting_arm[0] / math.sin(SMALL_HEEL))
+    curve = righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, [0.0, SMALL_HEEL], **appendages(eboat))
+    upright, heeled = curve.righting_arm
+    return float((heeled - upright * math.cos(SMALL_HEEL)) / math.sin(SMALL_HEEL))
 
 
 def vpp_righting_arm(path: Path) -> tuple[np.ndarray, np.ndarray, float]:
@@ -103,7 +111,7 @@ def steady_heels(moments, *, seconds: float = 60.0, ramp: float = 10.0, average:
         raise ValueError(f"steady_heels.average must be in (0, seconds - ramp] [s], got {average!r}")
     config = EBoatSimulatorConfig(wind=WindConfig(speed=0.0), dt=dt, substeps=substeps)
     sim = EBoatSimulator(config, len(moments), device=device)
-    rest = -floating_waterline(sim.eboat.hull, sim.eboat.mass_properties.mass, config.water.density)
+    rest = -floating_waterline(sim.eboat.hull, sim.eboat.hull_load(config.water.density), config.water.density)
     sim.reset(position=(0.0, 0.0, rest))
     steps, window = int(round(seconds / dt)), int(round(average / dt))
     wrench = np.zeros((len(moments), 6), dtype=np.float32)

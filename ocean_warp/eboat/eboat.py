@@ -17,6 +17,7 @@ from ..kernels.sailing_rig import RigParameters
 from ..hull_form import HullForm, Topsides, floating_waterline, measure_hull_form, measure_topsides
 from ..resistance import DEFAULT_FORM_FACTOR, ResiduaryResistance
 from ..sail import Mainsail
+from ..stability import Appendages
 from ..validation import require_choice
 from ..water_config import WaterConfig
 from ..hull import Hull
@@ -258,6 +259,15 @@ class EBoat:
         return self.mass_properties.mass - density * self.geometry.appendage_volume
 
     @property
+    def appendages(self) -> Appendages | None:
+        """The keel fin, bulb and rudder outside the hull mesh as ``ocean_warp.stability`` floats them, as the
+        mesh hydrostatics' ``kernels.appendage_buoyancy`` does (None: the procedural boat, which counts none)."""
+        geometry = self.geometry
+        if geometry.appendage_volume <= 0.0:
+            return None
+        return Appendages(geometry.appendage_volume, geometry.appendage_center, APPENDAGE_FADE_HEIGHT)
+
+    @property
     def boom_inertia(self) -> float:
         """Boom and sail about the mast [kg m^2]: the boom as a 1.8 m rod from the mast (sheet), the sail
         as a triangle on it (foot 1.8 m, centroid 0.6 m aft; assumed)."""
@@ -271,7 +281,9 @@ class EBoat:
         seed profile's where the sheet puts them (base frame)."""
         figures, act, geometry = self.rig_figures, ACTUATORS, self.geometry
         rig = RigParameters()
-        rig.mast_step = wp.vec3(*geometry.mast_step)
+        # The sail swings with the boom about the gooseneck's vertical axis (the real boat's 0.049 m aft of the
+        # mast's; the procedural boat's on it).
+        rig.mast_step = wp.vec3(geometry.boom_pivot[0], geometry.boom_pivot[1], geometry.mast_step[2])
         rig.sail_arm = figures.sail_arm
         physics = self.config.profile is Profile.PHYSICS
         rig.sail_height = geometry.sail_center_height if physics else figures.sail_center_height + geometry.base_z
@@ -342,13 +354,13 @@ class EBoat:
         """The buoyancy of the appendages outside the hull mesh (keel fin, bulb, rudder) in ``water``, for the
         mesh hydrostatics (``kernels.appendage_buoyancy``); None where the geometry counts none (the procedural
         hull)."""
-        geometry = self.geometry
-        if geometry.appendage_volume <= 0.0:
+        appendages = self.appendages
+        if appendages is None:
             return None
         model = AppendageBuoyancy()
-        model.volume = geometry.appendage_volume
-        model.center = wp.vec3(*geometry.appendage_center)
-        model.fade_height = APPENDAGE_FADE_HEIGHT
+        model.volume = appendages.volume
+        model.center = wp.vec3(*appendages.center)
+        model.fade_height = appendages.fade_height
         model.density = water.density
         model.gravity = water.gravity
         return model

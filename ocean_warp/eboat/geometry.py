@@ -65,8 +65,8 @@ class EBoatGeometry:
     """Foot of the mast."""
     mast_length: float
     """From the step to the masthead [m]."""
-    boom_height: float
-    """Height of the gooseneck (the boom's pivot on the mast)."""
+    boom_pivot: tuple[float, float, float]
+    """The gooseneck: the boom's pivot on its vertical axis (the real boat's 0.049 m aft of the mast's axis)."""
     sail_foot_height: float
     """Height of the sail's foot (the ORC main's boom height)."""
     sail_head_height: float
@@ -90,6 +90,11 @@ class EBoatGeometry:
     sailing heels: its buoyancy acts at ``appendage_center`` (mesh hydrostatics)."""
     appendage_center: tuple[float, float, float]
     """Centroid of that volume."""
+
+    @property
+    def boom_height(self) -> float:
+        """Height of the gooseneck [m]."""
+        return self.boom_pivot[2]
 
     @property
     def masthead(self) -> np.ndarray:
@@ -120,7 +125,7 @@ def _procedural(version: Version) -> EBoatGeometry:
     masthead_z = MAST_STEP[2] + PROCEDURAL_MAST_LENGTH
     return EBoatGeometry(
         hull=HullKind.PROCEDURAL, base_z=0.0, links=LINKS, mast_step=MAST_STEP, mast_length=PROCEDURAL_MAST_LENGTH,
-        boom_height=BOOM_HEIGHT, sail_foot_height=BOOM_HEIGHT, sail_head_height=masthead_z,
+        boom_pivot=(MAST_STEP[0], 0.0, BOOM_HEIGHT), sail_foot_height=BOOM_HEIGHT, sail_head_height=masthead_z,
         sail_center_height=figures.sail_center_height, keel=keel, keel_center=figures.keel_center_of_area,
         rudder=rudder, rudder_center=figures.rudder_center, rudder_pivot=(-1.086, 0.0, HULL_LINK_HEIGHT + 0.076),
         propeller_position=ACTUATORS["propeller_position"], appendage_volume=0.0, appendage_center=(0.0, 0.0, 0.0))
@@ -178,7 +183,7 @@ def _real(ballast: Ballast) -> EBoatGeometry:
     appendage_center = volumes @ centers / volumes.sum() + np.array([0.0, 0.0, base_z])
     return EBoatGeometry(
         hull=HullKind.REAL, base_z=base_z, links=links, mast_step=mast_step, mast_length=real.MAST_TOP_ABOVE_STEP,
-        boom_height=body("boom_link")[2], sail_foot_height=real.SAIL_FOOT_Z + base_z,
+        boom_pivot=body("boom_link"), sail_foot_height=real.SAIL_FOOT_Z + base_z,
         sail_head_height=real.SAIL_HEAD_Z + base_z, sail_center_height=real.SAIL_CENTROID_Z + base_z,
         keel=keel, keel_center=(real.KEEL_QUARTER_CHORD_X, 0.0, real.KEEL_ROOT_Z - 0.5 * real.KEEL_SPAN + base_z),
         rudder=rudder,

@@ -80,7 +80,7 @@ def eboat_parts(config: EBoatConfig | None = None, *, hull_detail: int = 2) -> B
     geometry = eboat_geometry(config.hull, config.version, config.ballast)
     mast_foot = np.array(geometry.mast_step)
     mast = tube(mast_foot, geometry.masthead, MAST_RADIUS)
-    boom_pivot = np.array([geometry.mast_step[0], 0.0, geometry.boom_height])
+    boom_pivot = np.array(geometry.boom_pivot)
     spar = tube((0.0, 0.0, 0.0), (-BOOM_LENGTH, 0.0, 0.0), SPAR_RADIUS)
     if geometry.hull is HullKind.PROCEDURAL:
         keel, sail, blade = _procedural_appendages(config, geometry)
@@ -123,7 +123,7 @@ def _real_appendages(geometry: EBoatGeometry) -> tuple[MeshData, MeshData, MeshD
                    fin_bottom, real.KEEL_ROOT_Z + base_z + 0.05)  # a little into the hull, so no gap shows
     bulb = ellipsoid(bulb_center, bulb_half)
     foot, head = geometry.sail_foot_height - geometry.boom_height, geometry.sail_head_height - geometry.boom_height
-    luff = -MAST_RADIUS
+    luff = geometry.mast_step[0] - MAST_RADIUS - geometry.boom_pivot[0]  # the mast's aft face
     sail = MeshData(np.array([[luff, 0.0, foot], [luff - real.SAIL_FOOT_LENGTH, 0.0, foot],
                               [luff - real.SAIL_HEAD_LENGTH, 0.0, head], [luff, 0.0, head]]),
                     np.array([4], dtype=np.int32), np.array([0, 1, 2, 3], dtype=np.int32))

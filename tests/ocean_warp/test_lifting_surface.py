@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import warp as wp
 
-from ocean_warp.eboat import EBoat
+from ocean_warp.eboat import EBoat, EBoatConfig
 from ocean_warp.kernels.foils import FoilTables, foil_force
 from ocean_warp.lifting_surface import LiftingSurface
 
@@ -69,13 +69,21 @@ def _keel_forces(flows: wp.array(dtype=wp.vec3), area: float, density: float, ta
                         tables.keel_lift, tables.keel_drag, 3.14159265)
 
 
-def test_keel_force_in_the_kernel(device, rng):
+# The keels' planforms: (span [m], root chord [m], tip chord [m], t/c). Real (sheet, real geometry): a
+# constant-chord fin of 0.235 m, t/c 0.106, 0.74 m outside the hull. Procedural (sheet): 0.23779 m^2 on a
+# 0.854 m span, taper 0.8 (assumed), t/c 0.12.
+KEELS = {"real": (0.74, 0.235, 0.235, 0.106),
+         "procedural": (0.854, 2 * 0.23779 / (0.854 * 1.8), 0.8 * 2 * 0.23779 / (0.854 * 1.8), 0.12)}
+
+
+@pytest.mark.parametrize("hull", KEELS)
+def test_keel_force_in_the_kernel(device, rng, hull):
     """The physics profile's keel at leeway: 1/2 rho A U^2 (C_L, C_D) with the coefficients worked by hand
-    from the keel's planform (sheet: 0.23779 m^2 on a 0.854 m span, taper 0.8, root on the hull)."""
-    eboat = EBoat()
+    from the keel's planform (root on the hull)."""
+    eboat = EBoat(EBoatConfig(hull=hull))
     tables = eboat.foil_tables(device)
-    span, area = 0.854, 0.23779
-    root = 2 * area / (span * 1.8)
+    span, root, tip, thickness = KEELS[hull]
+    area = 0.5 * span * (root + tip)
     leeway = np.radians(rng.uniform(1.0, 5.0, size=4))
     speed = rng.uniform(0.8, 2.0)
     flows = speed * np.stack([-np.cos(leeway), np.sin(leeway), np.zeros(4)], axis=1)  # water from ahead, to port
@@ -84,7 +92,7 @@ def test_keel_force_in_the_kernel(device, rng):
                                                           1025.0, tables], outputs=[out])
     forces = out.numpy()[:, :3].astype(np.float64)
     for k, alpha in enumerate(leeway):
-        lift, drag = by_hand(span, root, 0.8 * root, 2.0, 0.9, 0.12, 1.5, alpha)
+        lift, drag = by_hand(span, root, tip, 2.0, 0.9, thickness, 1.5, alpha)
         # The table is read by linear interpolation at 1 deg steps: the drag's curvature costs < 1e-3 of C_D.
         q = 0.5 * 1025.0 * area * speed**2
         direction = flows[k] / speed

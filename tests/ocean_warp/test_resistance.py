@@ -167,19 +167,33 @@ def _resistance(sim: EBoatSimulator, height: float, speed: float) -> float:
 
 
 def test_upright_resistance_near_the_vpp(device):
-    """0.5-2.0 m/s: the physics profile's upright resistance against the independent VPP's of the same
-    hull (ORC residuary surfaces, ORC friction and form factors, its own keel and rudder). The target is
-    30 %; at 1.7 m/s (Fn 0.39) the Delft regression, extrapolated below the series' length-displacement
+    """0.5-2.0 m/s: the physics profile's upright resistance of the procedural hull against the independent
+    VPP's of the same hull (ORC residuary surfaces, ORC friction and form factors, its own keel and rudder). The
+    target is 30 %; at 1.7 m/s (Fn 0.39) the Delft regression, extrapolated below the series' length-displacement
     range (3.55 against 4.34), rises earlier than the ORC surfaces and stands 33 % above: 35 % there."""
     with open(REFERENCE) as handle:
         rows = {round(float(r["speed_mps"]), 2): float(r["total_n"]) for r in csv.DictReader(handle)}
-    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=0.0)), 1, device=device)
+    sim = EBoatSimulator(EBoatSimulatorConfig(boat=EBoatConfig(hull="procedural"), wind=ow.WindConfig(speed=0.0)), 1,
+                         device=device)
     height = sim.eboat.rest_height(device)
     still = _resistance(sim, height, 0.0)
     for speed in (0.5, 1.0, 1.3, 1.5, 1.7, 1.9, 2.0):
         ours = _resistance(sim, height, speed) - still
         tolerance = 0.35 if speed == 1.7 else 0.30
         assert ours == pytest.approx(rows[speed], rel=tolerance), (speed, ours, rows[speed])
+
+
+def test_real_boats_upright_resistance_near_its_vpp(device):
+    """The real boat (the default) against the sheet's independent VPP of the real hull with its keel, bulb and
+    rudder ("An independent VPP of the real boat"): 6.7 N at 1.0 m/s, 18.1 N at 1.5, 26.9 N at 1.7, 69.0 N at
+    2.0 m/s; the target 30 % as above (measured 2026-11-28: +9, +3, -1, -19 %)."""
+    sheet = {1.0: 6.7, 1.5: 18.1, 1.7: 26.9, 2.0: 69.0}
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=0.0)), 1, device=device)
+    height = sim.eboat.rest_height(device)
+    still = _resistance(sim, height, 0.0)
+    for speed, expected in sheet.items():
+        ours = _resistance(sim, height, speed) - still
+        assert ours == pytest.approx(expected, rel=0.30), (speed, ours, expected)
 
 
 def test_profiles_and_bad_input():

@@ -8,15 +8,17 @@ import pytest
 import trimesh
 
 from benchmarks.studies.righting_arm import steady_heels
-from ocean_warp.eboat import EBoat
+from ocean_warp.eboat import EBoat, EBoatConfig
 from ocean_warp.hull import Hull
 from ocean_warp.hull_form import floating_waterline
 from ocean_warp.stability import (
+    Appendages,
     equilibrium_heel,
     float_heeled,
     heel_under_moment,
     righting_arm_curve,
 )
+from tests.waterlines import volume_by_waterlines, waterplane
 
 WATER = 1025.0
 
@@ -72,40 +74,6 @@ def test_circular_section_rights_only_by_its_centre_of_gravity():
         np.testing.assert_allclose(curve.righting_arm, center_below * np.sin(heels), atol=2e-5)
 
 
-def _port_waterline(triangles: np.ndarray, level: float) -> np.ndarray:
-    """(S, 2, 2) segments (x, y) where triangles (T, 3, 3) cross z = ``level``, on the port side (y >= 0)."""
-    above = triangles[:, :, 2] >= level
-    crossing = triangles[(above.sum(axis=1) == 1) | (above.sum(axis=1) == 2)]
-    points, cuts = [], []
-    for a, b in ((0, 1), (1, 2), (2, 0)):
-        pa, pb = crossing[:, a], crossing[:, b]
-        cut = (pa[:, 2] >= level) != (pb[:, 2] >= level)
-        t = (level - pa[:, 2]) / np.where(cut, pb[:, 2] - pa[:, 2], 1.0)
-        points.append(pa[:, :2] + t[:, None] * (pb[:, :2] - pa[:, :2]))
-        cuts.append(cut)
-    segments = np.stack(points, axis=1)[np.stack(cuts, axis=1)].reshape(-1, 2, 2)
-    return segments[segments[:, :, 1].mean(axis=1) >= 0.0]
-
-
-def waterplane(triangles: np.ndarray, level: float) -> tuple[float, float]:
-    """Area [m^2] and transverse second moment about the centre line I_T [m^4] of the waterplane of a hull
-    symmetric about y = 0, from its port half-breadths y(x): A = 2 int y dx, I_T = 2 int y^3 / 3 dx."""
-    segments = _port_waterline(triangles, level)
-    dx = np.abs(segments[:, 1, 0] - segments[:, 0, 0])
-    y1, y2 = segments[:, 0, 1], segments[:, 1, 1]
-    return (float(2.0 * np.sum(dx * (y1 + y2) / 2.0)),
-            float(2.0 * np.sum(dx * (y1**3 + y1**2 * y2 + y1 * y2**2 + y2**3) / 12.0)))
-
-
-def volume_by_waterlines(triangles: np.ndarray, level: float, slices: int = 600) -> tuple[float, float]:
-    """Volume [m^3] below z = ``level`` and the height of its centre [m], as integrals of the waterplane area
-    over height (trapezoid rule on ``slices`` waterlines)."""
-    heights = np.linspace(triangles[:, :, 2].min(), level, slices + 1)
-    areas = np.array([waterplane(triangles, z)[0] for z in heights])
-    volume = np.trapezoid(areas, heights)
-    return float(volume), float(np.trapezoid(areas * heights, heights) / volume)
-
-
 def test_waterplane_integrals_on_a_box_and_a_cylinder():
     hull = box_hull(2.0, 1.0, 0.6)
     area, inertia = waterplane(hull.vertices[hull.triangles], 0.25)
@@ -117,35 +85,76 @@ def test_waterplane_integrals_on_a_box_and_a_cylinder():
     assert center == pytest.approx(-4.0 * radius / (3.0 * math.pi), rel=1e-3)
 
 
-def test_eboat_rights_to_60_degrees_with_the_waterplane_metacentric_height(eboat):
-    mp = eboat.mass_properties
+@pytest.mark.parametrize("hull", ["real", "procedural"])
+def test_eboat_rights_to_60_degrees_with_the_waterplane_metacentric_height(hull):
+    """GM from the waterplane, independently of the divergence theorem: BM = I_T / V, the centre of buoyancy
+    from the waterplane areas over height, the real boat's keel, bulb and rudder (outside the mesh, under
+    water) adding their volume at their centroid. The initial slope of the curve discounts GZ(0): the real
+    boat's centre of gravity lies 0.17 mm to port (the URDF's)."""
+    eboat = EBoat(EBoatConfig(hull=hull))
+    mp, appendages = eboat.mass_properties, eboat.appendages
     heels = np.radians(np.arange(5.0, 61.0, 5.0))
-    curve = righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, heels)
+    curve = righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, heels, appendages=appendages)
     assert np.all(curve.righting_arm > 0.0), curve.righting_arm
 
     triangles = eboat.hull.vertices[eboat.hull.triangles].astype(np.float64)
-    level = floating_waterline(eboat.hull, mp.mass, WATER)
+    extra, extra_z = (0.0, 0.0) if appendages is None else (appendages.volume, appendages.center[2])
+    level = floating_waterline(eboat.hull, mp.mass - WATER * extra, WATER)
     volume, buoyancy_height = volume_by_waterlines(triangles, level)
-    assert volume == pytest.approx(mp.mass / WATER, rel=2e-3)
+    assert volume + extra == pytest.approx(mp.mass / WATER, rel=2e-3)
     _, inertia = waterplane(triangles, level)
-    gm = inertia / volume + buoyancy_height - mp.center_of_mass[2]
+    total = volume + extra
+    gm = inertia / total + (volume * buoyancy_height + extra * extra_z) / total - mp.center_of_mass[2]
     small = math.radians(1.0)
     for free_trim, tolerance in ((False, 0.005), (True, 0.02)):
-        slope = float_heeled(eboat.hull, mp.mass, mp.center_of_mass, small, free_trim=free_trim).righting_arm
-        assert slope / math.sin(small) == pytest.approx(gm, rel=tolerance), (free_trim, gm)
+        upright, heeled = (float_heeled(eboat.hull, mp.mass, mp.center_of_mass, heel, free_trim=free_trim,
+                                        appendages=appendages).righting_arm for heel in (0.0, small))
+        slope = (heeled - upright * math.cos(small)) / math.sin(small)
+        assert slope == pytest.approx(gm, rel=tolerance), (free_trim, gm)
+
+
+def test_appendages_float_as_a_submerged_volume():
+    """A box with a fully submerged appendage of volume V at depth: the box carries m - rho V, and the whole
+    boat's centre of buoyancy is the volumes' centroid; as the appendage's centroid rises through the fade band
+    its share falls linearly to 0 (a box held upright, lifted by lowering its mass)."""
+    length, beam, depth, kg = 2.0, 1.0, 0.6, 0.3
+    box, volume = box_hull(length, beam, depth), 0.05
+    appendages = Appendages(volume, (0.0, 0.0, -0.5), fade_height=0.2)
+    draft = 0.25
+    mass = WATER * (length * beam * draft + volume)
+    state = float_heeled(box, mass, (0.0, 0.0, kg), 0.0, appendages=appendages)
+    assert state.water_level == pytest.approx(draft, abs=1e-9)
+    assert state.volume == pytest.approx(mass / WATER, rel=1e-9)
+    box_centre = draft / 2.0
+    expected = (length * beam * draft * box_centre + volume * -0.5) / (length * beam * draft + volume)
+    assert state.center_of_buoyancy[2] == pytest.approx(expected, abs=1e-9)
+    # A light boat: the box floats so shallow that the appendage's centroid (0.5 m below the keel) sits 0.45 m
+    # below the water: share min(1/2 + 0.45 / 0.2, 1) = 1; with the centroid at 0.5 m and a band of 2 m, the
+    # share is 1/2 + (0.5 + d) / 2 for a draft d, and the volume balance fixes d.
+    wide = Appendages(volume, (0.0, 0.0, -0.5), fade_height=2.0)
+    light = WATER * (length * beam * 0.05 + volume * (0.5 + 0.55 / 2.0))
+    state = float_heeled(box, light, (0.0, 0.0, kg), 0.0, appendages=wide)
+    assert state.water_level == pytest.approx(0.05, abs=1e-7)
+    with pytest.raises(ValueError, match="Appendages.fade_height must be"):
+        Appendages(volume, (0.0, 0.0, -0.5), fade_height=0.0)
+    with pytest.raises(ValueError, match="righting_arm_curve.appendages must be an Appendages"):
+        righting_arm_curve(box, mass, (0.0, 0.0, kg), [0.1], appendages=(volume, (0, 0, -0.5)))
 
 
 def test_simulator_heels_where_the_curve_rights_the_moment(eboat, device):
     """Tolerance: at rest the simulator's only static forces are the hull's hydrostatic pressure, clipped
     exactly at the waterline as here, and the weight (sails, foils, drag and windage vanish with the
     motion), so the steady heel is the curve's up to float32 rounding and what remains of the roll
-    oscillation in the averaging window. Measured (CPU, 30 s, dt 0.05): within 0.01 deg, with up to
-    0.07 deg peak to peak left in the window at 100 N m; 0.1 deg allows that whole swing. 130 N m, near
-    the curve's peak (137 N m), settles slowest and is left to the benchmark. 150 N m is beyond the peak:
-    no equilibrium, and the boat must go over."""
-    moments = [20.0, 60.0, 100.0, 150.0]
+    oscillation in the averaging window; the real boat's keel, bulb and rudder float as the curve has them
+    (``kernels.appendage_buoyancy``, ``stability.Appendages``). Measured (CPU, 30 s, dt 0.05, the real boat,
+    2026-11-28): within 0.003 deg, with up to 0.04 deg peak to peak left in the window at 100 N m; 0.1 deg
+    allows that whole swing. 140 N m, nearer the curve's peak (155 N m), settles slowest and is left to the
+    benchmark. 170 N m is beyond the peak: no equilibrium, and the boat must go over."""
+    moments = [20.0, 60.0, 100.0, 170.0]
     mp = eboat.mass_properties
-    curve = righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, np.radians(np.arange(0.0, 46.0, 5.0)))
+    curve = righting_arm_curve(eboat.hull, mp.mass, mp.center_of_mass, np.radians(np.arange(0.0, 46.0, 5.0)),
+                               appendages=eboat.appendages)
+    assert 150.0 < curve.righting_moment().max() < 170.0
     predicted = np.array([equilibrium_heel(eboat.hull, curve, m) for m in moments])
     steady = steady_heels(moments, seconds=30.0, ramp=8.0, average=6.0, device=device)
     assert math.isnan(predicted[-1]) and steady.capsized[-1]

@@ -1,4 +1,5 @@
-"""The E-Boat preset: composite mass properties against the data sheet, the hull, floating at rest."""
+"""The E-Boat preset: composite mass properties against the data sheet, the hull, floating at rest (the real
+boat's figures against the sheet's CAD measurements: ``test_real_eboat``)."""
 
 import math
 
@@ -10,10 +11,11 @@ from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorC
 from ocean_warp.eboat.hull_shape import HullShape
 from ocean_warp.eboat.mass_properties import eboat_mass_properties
 from ocean_warp.eboat.sheet import LINKS, Version
+from ocean_warp.eboat.urdf_links import urdf_links
 from tests import reference_hull
 from tests.hull_setups import assert_afloat_upright, rotation_matrix, settled_heights
 
-# The sheet's link table, typed in again: mass [kg] of every link of eboat4 (V-B, V-C).
+# The sheet's link table (the procedural boat's), typed in again: mass [kg] of every link of eboat4 (V-B, V-C).
 SHEET_MASSES = {"hull": 83.69, "keel": 40.04, "mast": 12.5, "boom": 2.41, "sail": 2.22, "rudder": 1.60, "deck": 4.66,
                 "electric leg": 3.63, "engine base": 0.89, "bow": 1.10, "rack port": 1.73, "rack starboard": 1.73,
                 "camera": 2.07}
@@ -31,17 +33,19 @@ def test_composite_mass_properties_match_the_link_table():
     assert hull.inertia == (7.794, 42.817, 47.147, 1.267)
 
 
-def test_composite_inertia_is_the_parallel_axis_sum():
-    composite = eboat_mass_properties(Version.C)
-    masses = np.array([link.mass for link in LINKS])
-    positions = np.array([link.center_of_mass for link in LINKS])
+@pytest.mark.parametrize("table", ["sheet", "urdf"])
+def test_composite_inertia_is_the_parallel_axis_sum(table):
+    links = LINKS if table == "sheet" else urdf_links()
+    composite = eboat_mass_properties(Version.C, links)
+    masses = np.array([link.mass for link in links])
+    positions = np.array([link.center_of_mass for link in links])
     center = (masses[:, None] * positions).sum(axis=0) / masses.sum()
     np.testing.assert_allclose(composite.center_of_mass, center, atol=1e-12)
     # Each link as its own inertia plus, in the test's own words, m (|d|^2 1 - d d^T) with d its offset.
     expected = np.zeros((3, 3))
     from ocean_warp.eboat.mass_properties import link_inertia
 
-    for link, mass, position in zip(LINKS, masses, positions):
+    for link, mass, position in zip(links, masses, positions):
         d = position - center
         expected += link_inertia(link)
         expected[0, 0] += mass * (d[1] ** 2 + d[2] ** 2)
@@ -52,6 +56,11 @@ def test_composite_inertia_is_the_parallel_axis_sum():
         expected[1, 2] -= mass * d[1] * d[2]
     expected[1, 0], expected[2, 0], expected[2, 1] = expected[0, 1], expected[0, 2], expected[1, 2]
     np.testing.assert_allclose(composite.inertia, expected, rtol=1e-10, atol=1e-10)
+    if table == "urdf":  # a URDF link whose chain does not turn keeps the URDF's tensor: the hull link
+        np.testing.assert_allclose(link_inertia(links[0]), [[7.79423, -0.000716745, 1.26709],
+                                                            [-0.000716745, 42.8173, -0.00040264],
+                                                            [1.26709, -0.00040264, 47.1467]])
+        return
     # The links' own inertias, from the sheet's figures and shapes, written out here.
     by_name = {link.name: link_inertia(link) for link in LINKS}
     np.testing.assert_allclose(by_name["hull"], [[7.794, 0, 1.267], [0, 42.817, 0], [1.267, 0, 47.147]])
@@ -62,21 +71,27 @@ def test_composite_inertia_is_the_parallel_axis_sum():
                                                                          0.189**2 + 0.015**2]))  # box
 
 
-def test_boat_type_carries_the_composite_and_the_sheet_hydrodynamics():
-    eboat = EBoat()
-    composite = eboat_mass_properties(Version.C)
+@pytest.mark.parametrize("hull", ["real", "procedural"])
+def test_boat_type_carries_the_composite_and_the_sheet_hydrodynamics(hull):
+    eboat = EBoat(EBoatConfig(hull=hull))
+    composite = eboat_mass_properties(Version.C, LINKS if hull == "procedural" else eboat.geometry.links)
     assert eboat.boat_type.mass == pytest.approx(composite.mass)
     np.testing.assert_allclose(eboat.boat_type.center_of_mass, composite.center_of_mass)
     np.testing.assert_allclose(eboat.boat_type.inertia, composite.inertia)
     np.testing.assert_allclose(np.diag(eboat.boat_type.added_mass), [0, 124, 148, 0, 0, 0])  # sheet: X, Y, Z added mass
-    points = EBoat(EBoatConfig(version="V-A", hydrostatics="points")).boat_type
+    # Mesh hydrostatics: the hull damps surge, sway and heave; the sheet's roll and pitch terms stay (V-C: 25); the
+    # physics profile's keel, rudder and hull damp yaw (no N_r), the seed profile keeps the sheet's 120.
+    np.testing.assert_allclose(eboat.boat_type.linear_damping, [0, 0, 0, 25, 25, 0])
+    seed_mesh = EBoat(EBoatConfig(hull=hull, profile="seed", hydrostatics="mesh")).boat_type
+    np.testing.assert_allclose(seed_mesh.linear_damping, [0, 0, 0, 25, 25, 120])
+    points = EBoat(EBoatConfig(hull=hull, version="V-A", hydrostatics="points")).boat_type
     np.testing.assert_allclose(points.linear_damping, [5, 8, 50, 5, 5, 40])  # sheet, V-A column
     np.testing.assert_allclose(points.quadratic_damping[:2], [7.4, 160])
     assert points.astern_surge_factor == 1.3
 
 
-def test_hull_is_a_sailboat_hull_within_the_sheets_box():
-    hull = EBoat().hull
+def test_procedural_hull_is_a_sailboat_hull_within_the_sheets_box():
+    hull = EBoat(EBoatConfig(hull="procedural")).hull
     extents = np.ptp(hull.vertices, axis=0)
     assert extents[0] == pytest.approx(2.5, abs=0.01)  # length overall
     assert extents[1] <= 1.0 + 1e-9 and extents[2] <= 0.63  # within the collision box 2.7 x 1.0 x 0.63 m
@@ -88,11 +103,12 @@ def test_hull_is_a_sailboat_hull_within_the_sheets_box():
 
 
 def mesh_equilibrium_height(eboat, turn):
-    """Height [m] of the base frame at which the numpy reference's buoyancy on the hull, held at the
-    orientation ``turn``, carries the boat's weight in still water (bisection)."""
+    """Height [m] of the body origin at which the numpy reference's buoyancy on the hull, held at the
+    orientation ``turn``, carries the boat's weight in still water (bisection), less the buoyancy of what the
+    real boat's keel, bulb and rudder displace outside the mesh (under water, straight up)."""
     hydro, water = eboat.hydrodynamics.without_drag(), ow.WaterConfig()
     vertices = eboat.hull.vertices
-    weight = eboat.boat_type.mass * water.gravity
+    weight = (eboat.boat_type.mass - water.density * eboat.geometry.appendage_volume) * water.gravity
 
     def buoyancy(height):
         depth = -((vertices @ turn.T)[:, 2] + height)
@@ -120,14 +136,16 @@ def points_equilibrium_depth(eboat):
     return 0.5 * (low + high)
 
 
-def test_rest_height_is_where_the_reference_buoyancy_carries_the_weight():
-    eboat = EBoat()
+@pytest.mark.parametrize("hull", ["real", "procedural"])
+def test_rest_height_is_where_the_reference_buoyancy_carries_the_weight(hull):
+    eboat = EBoat(EBoatConfig(hull=hull))
     assert eboat.rest_height() == pytest.approx(mesh_equilibrium_height(eboat, np.eye(3)), abs=2e-4)
 
 
+@pytest.mark.parametrize("hull", ["real", "procedural"])
 @pytest.mark.parametrize("hydrostatics", ["mesh", "points"])
-def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics):
-    eboat = EBoat(EBoatConfig(hydrostatics=hydrostatics))
+def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics, hull):
+    eboat = EBoat(EBoatConfig(hydrostatics=hydrostatics, hull=hull))
     sim = EBoatSimulator(EBoatSimulatorConfig(boat=eboat.config, wind=ow.WindConfig(speed=0.0)), 2, device=device)
     sim.reset(position=[[0.0, 0.0, 0.1], [10.0, 0.0, -0.1]])
     height = settled_heights(sim, 500, average_over=100)
@@ -135,11 +153,12 @@ def test_floats_upright_at_its_equilibrium_draft(device, hydrostatics):
     assert_afloat_upright(state)
     turn = rotation_matrix(state["orientation"][0])
     if hydrostatics == "mesh":
-        # Archimedes by an independent implementation; about 5 cm above the source's waterline.
+        # Archimedes by an independent implementation; the procedural canoe about 5 cm above the source's waterline.
         np.testing.assert_allclose(height, mesh_equilibrium_height(eboat, turn), atol=1e-3)
     else:
         # The points' mean depth (the trim tilts them about x = 0) is the analytic one, to the segment's curvature.
-        points = np.array(eboat.vrx.points)
+        # They sit at the base frame's height: the real boat's body frame lies 0.094 m above it (sheet).
+        points = np.array(eboat.vrx.points) + [0.0, 0.0, -0.094 if hull == "real" else 0.0]
         mean_depth = -(height[0] + (points @ turn.T)[:, 2]).mean()
         assert mean_depth == pytest.approx(points_equilibrium_depth(eboat), abs=1e-3)
 
@@ -149,6 +168,10 @@ def test_bad_eboat_config_is_refused():
         EBoatConfig(version="V-D")
     with pytest.raises(ValueError, match="EBoatConfig.hydrostatics must be one of 'mesh', 'points'"):
         EBoatConfig(hydrostatics="strips")
+    with pytest.raises(ValueError, match="EBoatConfig.hull_shape shapes the procedural hull"):
+        EBoatConfig(hull_shape=HullShape(keel_z=-0.3))
+    with pytest.raises(ValueError, match="EBoatConfig.hull_shape must be a HullShape"):
+        EBoatConfig(hull_shape="canoe")
     with pytest.raises(ValueError, match="HullShape.bow_x must lie forward of stern_x"):
         HullShape(bow_x=-1.5)
     with pytest.raises(ValueError, match=r"HullShape.widest_at must be in \[0.05, 0.95\]"):
