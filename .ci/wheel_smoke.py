@@ -13,6 +13,7 @@ from ocean_warp.eboat.eboat import load_foil_table
 from ocean_warp.eboat.offsets_hull import load_hull_offsets
 from ocean_warp.envs.training.policies import SHIPPED_POLICIES, shipped_policy_path
 from ocean_warp.envs.training.policy_io import load_policy
+from ocean_warp.seakeeping import eboat_hydro_database
 
 source = pathlib.Path(sys.argv[1]).resolve()
 installed = pathlib.Path(ocean_warp.__file__).resolve().parent
@@ -30,9 +31,10 @@ if missing:
 
 table = load_foil_table()
 offsets = load_hull_offsets()
+hydrodynamics = eboat_hydro_database()
 for task in SHIPPED_POLICIES:
     path = shipped_policy_path(task)
     load_policy(path, task=task)
 print(f"wheel smoke: ocean_warp from {installed}; foil table {table.shape}; hull offsets at "
-      f"{len(offsets.stations)} stations; "
+      f"{len(offsets.stations)} stations; E-Boat hydrodynamics at {len(hydrodynamics.frequencies)} frequencies; "
       f"{len(SHIPPED_POLICIES)} shipped policies load ({', '.join(SHIPPED_POLICIES)})")

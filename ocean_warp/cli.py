@@ -34,6 +34,8 @@ JOBS = {
             "the simulator as a ROS node: the seed's topics and standard ones, commands, a reset service"),
     "export-policy": ("ocean_warp.ros.policy_export", "ocean_warp.ros.policy_export_options",
                       "a policy checkpoint as ONNX or TorchScript, its observation normalisation inside"),
+    "bem": ("ocean_warp.seakeeping.bem_command", "ocean_warp.seakeeping.bem_options",
+            "a hull's added mass, damping and radiation fits from potential flow (capytaine): JSON"),
 }
 """Each job: the module whose ``main(argv)`` runs it, the light module whose ``parser()`` builds its options
 (and, where the job takes arguments that are not options, whose ``own_arguments(argv)`` picks the options),
