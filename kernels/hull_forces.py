@@ -46,6 +46,8 @@ __all__ = [
     "residuary_wrench",
     "NO_WAVE_HISTORY",
     "wave_motion_update",
+    "WAVE_POINTS",
+    "water_motion_under_hull",
 ]
 
 # Triangles (or clipped pieces) smaller than this [m^2] carry no force: their normal is undefined.
@@ -86,6 +88,13 @@ class HullMeshes:
     """RESIDUARY_SAMPLES values per hull type: Rr / (volume rho g) at Fn = 0, RESIDUARY_STEP, ..."""
     residuary_heel: wp.array(dtype=float)
     """The same layout: its increase at 20 deg of heel (scaled by 6 phi^1.7)."""
+    wave_points: wp.array(dtype=wp.vec2)
+    """WAVE_POINTS per hull type: where the water's motion under the hull is sampled, body frame x, y [m] of a
+    grid over the hull's plan, from the grid's centre (see :func:`water_motion_under_hull`)."""
+    wave_point_center: wp.array(dtype=wp.vec3)
+    """Per hull type: the grid's centre, body frame [m] (z 0)."""
+    wave_point_spread: wp.array(dtype=wp.vec2)
+    """Per hull type: (sum x^2, sum y^2) over its wave points [m^2]."""
 
 
 @wp.struct
@@ -420,21 +429,60 @@ def sample_vertex_water(surface: OceanSurface, local: wp.vec3, origin: wp.vec3, 
 
 
 NO_WAVE_HISTORY = wp.constant(3.0e38)
-"""Marks a boat whose wave velocity of the last substep is not known (fresh or reset): no acceleration yet."""
+"""Marks a boat whose water motion of the last substep is not known (fresh or reset): no acceleration yet."""
+WAVE_POINTS = wp.constant(33)
+"""Points per hull type where the water's motion under the hull is sampled: 11 along by 3 across."""
+wave_moments = wp.types.vector(length=9, dtype=wp.float32)
+"""Sums over the wave points of the water velocity v, x v and y v (body frame): what the block reduces."""
 
 
 @wp.func
-def wave_motion_update(surface: OceanSurface, origin_grid: wp.vec2, currents: CurrentField, substep: float,
-                       boat: int, wave_velocity: wp.array(dtype=wp.vec3), wave_acceleration: wp.array(dtype=wp.vec3)):
-    """The water's velocity at the ocean's middle depth under the boat's origin, orbital plus current (world
-    frame [m/s]), and its rate of change along the boat's path since the last substep [m/s^2] (0 without a
-    last one)."""
-    now = velocity_at_depth(surface, origin_grid) + current_at(currents, boat, surface.pressure_depths[1])
+def wave_point_moments(surface: OceanSurface, meshes: HullMeshes, kind: int, point: int, origin: wp.vec3,
+                       rotation: wp.quat, origin_shift: wp.vec2, currents: CurrentField, boat: int) -> wave_moments:
+    """(v, x v, y v) of one wave point: the water's velocity at the ocean's middle depth under it, orbital plus
+    current, body frame [m/s], times its offsets x, y [m] from the grid's centre."""
+    r = meshes.wave_points[kind * WAVE_POINTS + point]
+    offset = wp.quat_rotate(rotation, meshes.wave_point_center[kind] + wp.vec3(r[0], r[1], 0.0))
+    q = undisplaced_position_near(surface, wp.vec2(origin[0] + offset[0], origin[1] + offset[1]), origin_shift)
+    depth = surface.pressure_depths[1]
+    v = wp.quat_rotate_inv(rotation, velocity_at_depth(surface, q) + current_at(currents, boat, depth))
+    x = r[0]
+    y = r[1]
+    return wave_moments(v[0], v[1], v[2], x * v[0], x * v[1], x * v[2], y * v[0], y * v[1], y * v[2])
+
+
+@wp.func
+def water_motion_under_hull(meshes: HullMeshes, kind: int, sums: wave_moments, rotation: wp.quat) -> vec6:
+    """The rigid motion that fits the water's velocity over the hull's wave points, in least squares: the
+    velocity of the water the body origin is in [m/s] and its angular velocity [rad/s], WORLD frame. Over a
+    waterplane grid (x, y about its centre), v_z = w + p y - q x, v_x = u - r y, v_y = v + r x give
+    w = mean v_z, p = sum(y v_z) / sum(y^2), q = -sum(x v_z) / sum(x^2), r = (sum(x v_y) - sum(y v_x)) /
+    (sum x^2 + sum y^2); the velocity at the origin adds the angular part's at the grid's centre's offset. Waves
+    shorter than the hull average out over it, as they do in the forces they exert."""
+    spread = meshes.wave_point_spread[kind]
+    count = float(WAVE_POINTS)
+    mean = wp.vec3(sums[0], sums[1], sums[2]) / count
+    p = sums[8] / spread[1]
+    q = -sums[5] / spread[0]
+    r = (sums[4] - sums[6]) / (spread[0] + spread[1])
+    angular = wp.vec3(p, q, r)
+    at_origin = mean - wp.cross(angular, meshes.wave_point_center[kind])
+    world_linear = wp.quat_rotate(rotation, at_origin)
+    world_angular = wp.quat_rotate(rotation, angular)
+    return vec6(world_linear[0], world_linear[1], world_linear[2], world_angular[0], world_angular[1],
+                world_angular[2])
+
+
+@wp.func
+def wave_motion_update(motion: vec6, substep: float, boat: int, wave_velocity: wp.array(dtype=vec6),
+                       wave_acceleration: wp.array(dtype=vec6)):
+    """Keep the water's rigid motion under the hull (world frame [m/s, rad/s]) and its rate of change along the
+    boat's path since the last substep [m/s^2, rad/s^2] (0 without a last one)."""
     before = wave_velocity[boat]
-    acceleration = wp.vec3()
+    acceleration = vec6()
     if before[0] != NO_WAVE_HISTORY:
-        acceleration = (now - before) / substep
-    wave_velocity[boat] = now
+        acceleration = (motion - before) / substep
+    wave_velocity[boat] = motion
     wave_acceleration[boat] = acceleration
 
 
@@ -492,8 +540,8 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
         swept_rate: wp.array(dtype=float),
         currents: CurrentField,
         boat_water_velocity: wp.array(dtype=wp.vec3),
-        wave_velocity: wp.array(dtype=wp.vec3),
-        wave_acceleration: wp.array(dtype=wp.vec3),
+        wave_velocity: wp.array(dtype=vec6),
+        wave_acceleration: wp.array(dtype=vec6),
         wrench: wp.array(dtype=vec6),
     ):
         boat, lane = wp.tid()
@@ -513,7 +561,13 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
         flow_at_origin = with_current(flow_at_origin, currents, boat, rotation, origin[2])
         if lane == 0:
             boat_water_velocity[boat] = flow_at_origin
-            wave_motion_update(surface, origin_grid, currents, water.substep, boat, wave_velocity, wave_acceleration)
+        moments = wave_moments()
+        for point in range(lane, WAVE_POINTS, wp.block_dim()):
+            moments += wave_point_moments(surface, meshes, kind, point, origin, rotation, origin_shift, currents, boat)
+        moment_sums = wp.tile_sum(wp.tile(moments, preserve_type=True))
+        if lane == 0:
+            wave_motion_update(water_motion_under_hull(meshes, kind, moment_sums[0], rotation), water.substep, boat,
+                               wave_velocity, wave_acceleration)
 
         water_at = wp.tile_zeros(shape=(slots,), dtype=wp.vec4, storage="shared")
         for round_index in range(vertex_rounds):

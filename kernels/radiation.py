@@ -6,9 +6,11 @@ its retardation kernels, mu(t) = int K(t - s) nu_r(s) ds (Cummins 1962). A hull'
 dx/dt = A x + B nu_r[j], mu_i += C x; here each model advances by its exact zero-order-hold step,
 x <- Phi x + Gamma nu_r[j] (Phi = e^{A h}, Gamma = int_0^h e^{A s} ds B, computed once on the host for the
 substep h). The velocity that drives them is the hull's relative to the water's orbital motion at the
-ocean's middle depth (the relative-motion form: a hull that moves with the water radiates nothing), and
-the water's acceleration there loads the hull through the infinite-frequency added mass (the diffraction
-correction of a hull small against the waves: Fossen's unified model with Morison's inertia term).
+ocean's middle depth, fitted as a rigid motion over a grid of points under the hull
+(``kernels.hull_forces.water_motion_under_hull``: the relative-motion form, in which a hull that moves with
+the water radiates nothing), and the acceleration of that motion loads the hull through the infinite-frequency
+added mass (the diffraction correction of relative-motion strip theory: waves short against the hull average
+out over the grid, as they do in the Froude-Krylov pressure).
 
 Layout: the terms of hull type t are ``first_term[t]`` .. ``first_term[t + 1] - 1``; term e couples DOF
 ``column[e]`` into DOF ``row[e]`` (0..5: surge, sway, heave, roll, pitch, yaw) through ``order[e]`` states
@@ -90,10 +92,10 @@ def advance_radiation(model: RadiationModel, kind: int, boat: int, nu_r: vec6, s
 
 
 @wp.func
-def diffraction_wrench(model: RadiationModel, kind: int, water_acceleration: wp.vec3) -> vec6:
-    """A_inf times the water's acceleration (body frame [m/s^2]) as a wrench [N, N m] about the origin."""
-    added = model.added_mass_infinite[kind]
-    return added * vec6(water_acceleration[0], water_acceleration[1], water_acceleration[2], 0.0, 0.0, 0.0)
+def diffraction_wrench(model: RadiationModel, kind: int, water_acceleration: vec6) -> vec6:
+    """A_inf times the acceleration of the water's rigid motion under the hull (body frame [m/s^2, rad/s^2],
+    about the origin) as a wrench [N, N m] about the origin."""
+    return model.added_mass_infinite[kind] * water_acceleration
 
 
 @wp.kernel(enable_backward=False)

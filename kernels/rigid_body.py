@@ -254,8 +254,8 @@ def integrate_boats(
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
     radiation: RadiationModel,
-    wave_velocity: wp.array(dtype=wp.vec3),
-    wave_acceleration: wp.array(dtype=wp.vec3),
+    wave_velocity: wp.array(dtype=vec6),
+    wave_acceleration: wp.array(dtype=vec6),
     radiation_state: wp.array(dtype=float),
     position: wp.array(dtype=wp.vec3),
     orientation: wp.array(dtype=wp.quat),
@@ -283,7 +283,7 @@ def integrate_boats(
     seakeeping = radiation.has_database[kind] != 0
     if seakeeping:
         tau = (tau - radiation_force(radiation, kind, boat, radiation_state)
-               + diffraction_wrench(radiation, kind, wp.quat_rotate_inv(rotation, wave_acceleration[boat])))
+               + diffraction_wrench(radiation, kind, _rotate_wrench_to_body(rotation, wave_acceleration[boat])))
 
     current = water_velocity[boat]
     nu_r = nu - vec6(current[0], current[1], current[2], 0.0, 0.0, 0.0)
@@ -314,12 +314,12 @@ def integrate_boats(
     position[boat] = new_position
     orientation[boat] = new_rotation
     if seakeeping:
+        # The memory follows the hull's motion relative to the water's (a steady drift with a current radiates
+        # nothing; a hull that moves with the waves radiates nothing either).
         wave = wave_velocity[boat]
         if wave[0] == NO_WAVE_HISTORY:
-            wave = wp.vec3()
-        flow = wp.quat_rotate_inv(rotation, wave)
-        advance_radiation(radiation, kind, boat, new_nu - vec6(flow[0], flow[1], flow[2], 0.0, 0.0, 0.0),
-                          radiation_state)
+            wave = vec6()
+        advance_radiation(radiation, kind, boat, new_nu - _rotate_wrench_to_body(rotation, wave), radiation_state)
     if wp.quat_rotate(new_rotation, wp.vec3(0.0, 0.0, 1.0))[2] < bounds.min_uprightness:
         flags = flags | STATUS_CAPSIZED
     if new_position[2] > bounds.max_altitude:
@@ -342,7 +342,7 @@ def place_boat(
     wrench_world: wp.array(dtype=vec6),
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
-    wave_velocity: wp.array(dtype=wp.vec3),
+    wave_velocity: wp.array(dtype=vec6),
 ):
     """Put ``boat`` at the new state; clear its flags, its external wrenches and the water velocity seen
     at its old place, and forget the wave velocity of its last substep (the next substep samples the new
@@ -354,7 +354,7 @@ def place_boat(
     wrench_world[boat] = vec6()
     wrench_body[boat] = vec6()
     water_velocity[boat] = wp.vec3()
-    wave_velocity[boat] = wp.vec3(NO_WAVE_HISTORY, 0.0, 0.0)
+    wave_velocity[boat] = vec6(NO_WAVE_HISTORY, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 @wp.kernel(enable_backward=False)
@@ -370,7 +370,7 @@ def reset_boats_masked(
     wrench_world: wp.array(dtype=vec6),
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
-    wave_velocity: wp.array(dtype=wp.vec3),
+    wave_velocity: wp.array(dtype=vec6),
 ):
     """Every boat whose ``mask`` is non-zero to its row of the new state (launch dim: all boats); the
     others are left alone. No index list, so a captured graph can reset whichever boats ended."""

@@ -10,7 +10,7 @@ import numpy as np
 import warp as wp
 
 from .boat_type import BoatType
-from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, NO_WAVE_HISTORY, HullMeshes
+from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, NO_WAVE_HISTORY, WAVE_POINTS, HullMeshes
 from .kernels.radiation import reset_radiation_masked
 from .radiation import radiation_states_per_boat
 from .resistance import FROUDE_SAMPLES
@@ -132,10 +132,12 @@ class FleetState:
     swept_rate: wp.array
     """(total triangles,) float: each hull triangle's last swept rate A_sub |v| for slamming [m^3/s]."""
     wave_velocity: wp.array
-    """(N,) vec3: the water's velocity at the ocean's middle pressure depth under each boat's origin, orbital plus
-    current, world frame [m/s] (computed by the hull pass; x = ``NO_WAVE_HISTORY`` after a reset)."""
+    """(N,) vec6: the rigid motion that fits the water's velocity at the ocean's middle pressure depth under each
+    hull, orbital plus current: the velocity of the water at the body origin [m/s] and its angular velocity
+    [rad/s], world frame (computed by the hull pass, ``kernels.hull_forces.water_motion_under_hull``; first
+    component ``NO_WAVE_HISTORY`` after a reset)."""
     wave_acceleration: wp.array
-    """(N,) vec3: its rate of change along the boat's path over the last substep, world frame [m/s^2]."""
+    """(N,) vec6: its rate of change along the boat's path over the last substep, world frame [m/s^2, rad/s^2]."""
     radiation_state: wp.array
     """(N * S,) float: each boat's block of S radiation states (``FleetModel.radiation_states``; Cummins' memory,
     ``ocean_warp.kernels.radiation``), in the units of its type's state-space models."""
@@ -207,8 +209,8 @@ class Fleet:
             velocity=wp.zeros(n, dtype=vec6, device=device), status=wp.zeros(n, dtype=int, device=device),
             water_velocity=wp.zeros(n, dtype=wp.vec3, device=device),
             swept_rate=wp.full(max(total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device),
-            wave_velocity=wp.full(n, wp.vec3(NO_WAVE_HISTORY, 0.0, 0.0), dtype=wp.vec3, device=device),
-            wave_acceleration=wp.zeros(n, dtype=wp.vec3, device=device),
+            wave_velocity=wp.full(n, vec6(NO_WAVE_HISTORY, 0.0, 0.0, 0.0, 0.0, 0.0), dtype=vec6, device=device),
+            wave_acceleration=wp.zeros(n, dtype=vec6, device=device),
             radiation_state=wp.zeros(max(n * self.model.radiation_states, 1), dtype=float, device=device))
         """What moves (see :class:`FleetState`)."""
         self.control = FleetControl(wrench_world=wp.zeros(n, dtype=vec6, device=device),
@@ -332,7 +334,28 @@ def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:
     meshes.surface_area = wp.array([h.surface_area for h in hulls], dtype=float, device=device)
     meshes.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
     _add_residuary_tables(meshes, boat_types, device)
+    _add_wave_points(meshes, hulls, device)
     return meshes
+
+
+def _add_wave_points(meshes: HullMeshes, hulls, device) -> None:
+    """Each hull's grid of wave points: 11 along by 3 across its plan (x at 0.05 to 0.95 of its length, y at
+    0.25 to 0.75 of its breadth), about the plan's centre: a wave as short as 0.4 of the hull still has four
+    points a wavelength, so it averages out rather than aliasing."""
+    along = np.linspace(-0.45, 0.45, 11)
+    across = np.array([-0.25, 0.0, 0.25])
+    points, centers, spreads = [], [], []
+    for hull in hulls:
+        low, high = hull.bounds
+        length, breadth = high[0] - low[0], high[1] - low[1]
+        grid = np.array([(x * length, y * breadth) for x in along for y in across])
+        assert len(grid) == WAVE_POINTS
+        points.append(grid)
+        centers.append((0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), 0.0))
+        spreads.append(((grid[:, 0] ** 2).sum(), (grid[:, 1] ** 2).sum()))
+    meshes.wave_points = wp.array(np.concatenate(points).astype(np.float32), dtype=wp.vec2, device=device)
+    meshes.wave_point_center = wp.array(np.array(centers, dtype=np.float32), dtype=wp.vec3, device=device)
+    meshes.wave_point_spread = wp.array(np.array(spreads, dtype=np.float32), dtype=wp.vec2, device=device)
 
 
 def _add_residuary_tables(meshes: HullMeshes, boat_types: list[BoatType], device) -> None:

@@ -12,6 +12,8 @@ import warp as wp
 from ..boat_type import BoatType
 from ..hull import Hull
 from ..hydrodynamics_config import HydrodynamicsConfig
+from ..seakeeping.database import HydroDatabase
+from ..seakeeping.eboat_database import eboat_hydro_database
 from ..kernels.appendage_buoyancy import AppendageBuoyancy
 from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
@@ -151,6 +153,12 @@ class EBoatConfig:
         return self.hull_shape.with_triangle_budget(int(self.hull_triangles))
 
     @property
+    def uses_hydro_database(self) -> bool:
+        """Whether this boat's hull has a hydrodynamic database: the real hull, meshed, in the physics profile."""
+        return (self.hull is HullKind.REAL and self.profile is Profile.PHYSICS
+                and self.hydrostatics is Hydrostatics.MESH)
+
+    @property
     def hull_resolution(self) -> tuple[int, int]:
         """(stations, section_points) of the physics hull: ``hull_triangles``'s, else the default (44, 12; the
         procedural hull: ``hull_shape``'s); its triangles number stations x (4 section_points - 2)."""
@@ -181,10 +189,16 @@ def load_foil_table() -> np.ndarray:
     return table
 
 
-def eboat_hydrodynamics(profile: Profile | str = Profile.PHYSICS, **overrides) -> HydrodynamicsConfig:
-    """The per-triangle water model of the E-Boat's hull under ``profile`` (see below), with ``overrides``."""
+def eboat_hydrodynamics(profile: Profile | str = Profile.PHYSICS, *, radiation: bool = False,
+                        **overrides) -> HydrodynamicsConfig:
+    """The per-triangle water model of the E-Boat's hull under ``profile`` (see below), with ``overrides``;
+    ``radiation``: the hull has a hydrodynamic database, whose radiation damps it (the drag keeps what viscosity
+    does only: :data:`VISCOUS_CROSS_FLOW`)."""
     profile = require_choice("eboat_hydrodynamics", "profile", profile, Profile)
-    return HydrodynamicsConfig(**{**EBOAT_HYDRODYNAMICS[profile], **overrides})
+    model = dict(EBOAT_HYDRODYNAMICS[profile])
+    if radiation:
+        model.update(VISCOUS_CROSS_FLOW)
+    return HydrodynamicsConfig(**{**model, **overrides})
 
 
 # Kerner's drag coefficients as the seed profile's mesh hull had them, fitted at one point: with the
@@ -195,6 +209,15 @@ def eboat_hydrodynamics(profile: Profile | str = Profile.PHYSICS, **overrides) -
 # (1 + k) and the Delft residuary resistance.
 _KERNER_CROSS_FLOW = dict(pressure_drag_linear=80.0, pressure_drag_quadratic=400.0, suction_linear=40.0,
                           suction_quadratic=200.0)
+# With radiation damping from potential flow the linear terms above, which stood in for it, go: what is left
+# is the viscous cross-flow drag, quadratic in the cross-flow speed. 400 N/m^2 at 1 m/s on the faces the flow
+# meets and 200 on those it leaves amount to C_D = (400 + 200) / (0.5 rho 1 m^2/s^2) = 1.17 on a section's
+# projected area, a flat plate's normal drag (Hoerner, "Fluid-Dynamic Drag", 1965, ch. 3: 1.17 for a square
+# plate) and within the range of ship sections' cross-flow drag coefficients (0.5-1.3 by bilge radius;
+# Faltinsen, "Sea Loads on Ships and Offshore Structures", 1990, ch. 7): a flat-bottomed, hard-chined hull
+# such as this one sits at the plate's end of that range.
+VISCOUS_CROSS_FLOW = dict(pressure_drag_linear=0.0, suction_linear=0.0)
+"""The changes to the physics profile's drag for a hull with a hydrodynamic database."""
 EBOAT_HYDRODYNAMICS = {
     Profile.PHYSICS: dict(_KERNER_CROSS_FLOW, cross_flow_only=True, form_factor=DEFAULT_FORM_FACTOR),
     Profile.SEED: dict(_KERNER_CROSS_FLOW),
@@ -214,6 +237,10 @@ class EBoat:
         self.mass_properties: MassProperties = eboat_mass_properties(version, self.geometry.links)
         self.hull = eboat_hull_mesh(self.config)
         vrx = VRX[version]
+        self.seakeeping: HydroDatabase | None = self._hydro_database()
+        """The hull's hydrodynamic database (radiation, infinite-frequency added mass), or None: the real hull
+        in the physics profile has one (shipped: ``ocean_warp.seakeeping.eboat_hydro_database``), the procedural
+        hull and the seed profile keep the constant VRX added mass and their drag terms."""
         if self.config.hydrostatics is Hydrostatics.POINTS:
             damping = dict(linear_damping=vrx.linear_damping, quadratic_damping=vrx.quadratic_damping,
                            astern_surge_factor=vrx.astern_surge_factor)
@@ -224,6 +251,10 @@ class EBoat:
             rotational = tuple(vrx.linear_damping[3:])
             if self.config.profile is Profile.PHYSICS:
                 rotational = rotational[:2] + (0.0,)
+            if self.seakeeping is not None:
+                # Radiation damps roll and pitch now, and the keel's and rudder's cross flow and the hull's
+                # viscous drag the rest: the sheet's linear terms, which stood in for them, go too.
+                rotational = (0.0, 0.0, 0.0)
             damping = dict(linear_damping=(0.0, 0.0, 0.0) + rotational)
         mp = self.mass_properties
         waterline = floating_waterline(self.hull, self.hull_load(SEA_WATER_DENSITY))
@@ -231,10 +262,11 @@ class EBoat:
         """The canoe body's form below its waterline at rest, upright, in sea water (1025 kg/m^3)."""
         physics = self.config.profile is Profile.PHYSICS
         residuary = ResiduaryResistance.delft(self.hull_form) if physics else None
+        added_mass = vrx.added_mass if self.seakeeping is None else None
         self.boat_type = BoatType(hull=self.hull, mass=mp.mass, center_of_mass=tuple(mp.center_of_mass),
-                                  inertia=mp.inertia, added_mass=vrx.added_mass, name=f"eboat {version.value}",
-                                  residuary=residuary, **damping)
-        self.hydrodynamics = eboat_hydrodynamics(self.config.profile)
+                                  inertia=mp.inertia, added_mass=added_mass, seakeeping=self.seakeeping,
+                                  name=f"eboat {version.value}", residuary=residuary, **damping)
+        self.hydrodynamics = eboat_hydrodynamics(self.config.profile, radiation=self.seakeeping is not None)
         """The water model of this profile, in sea water (the simulator's config sets the density)."""
         self.foil_table = load_foil_table()
         self.masthead = self.geometry.masthead
@@ -252,6 +284,15 @@ class EBoat:
         deck's highest point."""
         self.topsides: Topsides = measure_topsides(self.hull, waterline)
         """The hull above its waterline at rest, as the wind sees it (the physics profile's windage)."""
+
+    def _hydro_database(self) -> HydroDatabase | None:
+        """The shipped database for the real hull in the physics profile's mesh model, else None. It was computed
+        on the default mesh (and is checked against it); a triangle budget meshes the same lines coarser or finer,
+        so it takes the same database."""
+        config = self.config
+        if not config.uses_hydro_database:
+            return None
+        return eboat_hydro_database(self.hull if config.hull_triangles is None else None)
 
     def hull_load(self, density: float) -> float:
         """Mass [kg] the hull mesh carries at rest in water of ``density`` [kg/m^3]: the boat's, less what

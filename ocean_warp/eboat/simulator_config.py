@@ -76,7 +76,8 @@ class EBoatSimulatorConfig:
     def __post_init__(self):
         owner = "EBoatSimulatorConfig"
         if self.hydrodynamics is None and isinstance(self.boat, EBoatConfig):
-            object.__setattr__(self, "hydrodynamics", eboat_hydrodynamics(self.boat.profile))
+            object.__setattr__(self, "hydrodynamics", eboat_hydrodynamics(
+                self.boat.profile, radiation=self.boat.uses_hydro_database))
         for name, kind in (("boat", EBoatConfig), ("ocean", OceanConfig), ("wind", WindConfig),
                            ("current", CurrentConfig), ("sensors", SensorConfig),
                            ("hydrodynamics", HydrodynamicsConfig)):
