@@ -11,8 +11,8 @@ the half-breadth of its lowest measured point) and the side (from the chine up t
 half-breadth at the sheer extrapolated from the two highest waterlines); both are resampled at fixed
 fractions (the bottom by half-breadth, the side by height), and the resampled points are interpolated
 linearly in x between the measured stations onto evenly spaced ones, from the transom (x = 0) to the bow
-(``LENGTH``), extrapolating the two end intervals. The mesh closes with the first station's section (the
-transom), the last one's (the plumb bow), each a fan from a point at its middle, and the deck between the
+(``LENGTH``, 2.489 m), extrapolating the two end intervals. The mesh closes with the first station's section
+(the transom), the last one's (the plumb bow), each a fan from a point at its middle, and the deck between the
 sheer lines. Port and starboard share the centre line of the bottom. Triangles: ``stations * (4 *
 section_points - 2)``, as :func:`~ocean_warp.eboat.hull_shape.triangle_count` counts the procedural hull's,
 so one budget picks both hulls' resolution.
@@ -77,6 +77,8 @@ class HullOffsets:
     """(S,) z of the flat bottom at each station [m] (below 0, the sheer)."""
     sections: tuple
     """S arrays (K_s, 2) of (z, half-breadth) [m], z increasing, all above the bottom and below the sheer."""
+    length: float | None = None
+    """From the transom (x = 0) to the bow [m], at or beyond the last station; None: the last station."""
 
     def __post_init__(self):
         stations, bottom = np.asarray(self.stations, dtype=np.float64), np.asarray(self.bottom, dtype=np.float64)
@@ -99,14 +101,21 @@ class HullOffsets:
                     and np.all(y > 0.0)):
                 raise ValueError(f"HullOffsets: the section at x = {x} m must have increasing heights between the "
                                  f"bottom ({floor} m) and the sheer (0) and positive half-breadths")
+        length = float(stations[-1]) if self.length is None else self.length
+        if not (isinstance(length, (int, float)) and np.isfinite(length) and length >= stations[-1]
+                and stations[0] >= 0.0):
+            raise ValueError(f"HullOffsets: the stations must lie in [0, length] from the transom, got "
+                             f"{stations[0]}..{stations[-1]} m and length {self.length!r}")
+        object.__setattr__(self, "length", float(length))
         object.__setattr__(self, "stations", stations)
         object.__setattr__(self, "bottom", bottom)
         object.__setattr__(self, "sections", tuple(np.asarray(s, dtype=np.float64) for s in self.sections))
 
 
-def parse_hull_offsets(text: str) -> HullOffsets:
+def parse_hull_offsets(text: str, length: float | None = None) -> HullOffsets:
     """The offsets in the layout of ``hull_offsets.csv``: '#' comment lines, a header ``x_m, bottom_z_m,
-    y_at_bottom_plus_3mm, y_at_z<height>...``, then one row per station (an empty cell: no hull there)."""
+    y_at_bottom_plus_3mm, y_at_z<height>...``, then one row per station (an empty cell: no hull there); the
+    hull ``length`` [m] from the transom (None: to the last station)."""
     lines = [line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]
     header = [cell.strip() for cell in lines[0].split(",")]
     if header[:3] != ["x_m", "bottom_z_m", "y_at_bottom_plus_3mm"] or len(header) < 5:
@@ -126,14 +135,14 @@ def parse_hull_offsets(text: str) -> HullOffsets:
         keep = np.isfinite(y)
         order = np.argsort(z[keep])
         sections.append(np.column_stack([z[keep][order], y[keep][order]]))
-    return HullOffsets(stations=table[:, 0], bottom=table[:, 1], sections=tuple(sections))
+    return HullOffsets(stations=table[:, 0], bottom=table[:, 1], sections=tuple(sections), length=length)
 
 
 @functools.cache
 def load_hull_offsets() -> HullOffsets:
     """The E-Boat's offsets, ``hull_offsets.csv`` shipped with the package (sheet, real geometry)."""
     text = importlib.resources.files("ocean_warp.eboat").joinpath("hull_offsets.csv").read_text()
-    return parse_hull_offsets(text)
+    return parse_hull_offsets(text, LENGTH)
 
 
 def _split(section_points: int) -> tuple[int, int]:
@@ -172,7 +181,7 @@ def _along(stations: np.ndarray, values: np.ndarray, x: np.ndarray) -> np.ndarra
 def offsets_hull(stations: int = DEFAULT_STATIONS, section_points: int = DEFAULT_SECTION_POINTS, *,
                  offsets: HullOffsets | None = None, name: str = "eboat") -> Hull:
     """The hull of ``offsets`` (default: the E-Boat's, :func:`load_hull_offsets`) as a closed mesh in the body
-    frame [m], lofted at ``stations`` evenly spaced stations (4 to 400) from the transom to ``LENGTH`` of
+    frame [m], lofted at ``stations`` evenly spaced stations (4 to 400) from the transom to its length, of
     ``section_points`` points each (3 to 100, centre line to sheer): ``stations * (4 * section_points - 2)``
     triangles."""
     n = require_int_in_range("offsets_hull", "stations", stations, _MIN_STATIONS, _MAX_STATIONS)
@@ -180,7 +189,7 @@ def offsets_hull(stations: int = DEFAULT_STATIONS, section_points: int = DEFAULT
                              _MAX_SECTION_POINTS)
     offsets = offsets if offsets is not None else load_hull_offsets()
     measured_y, measured_z = _resampled_sections(offsets, m)
-    x = np.linspace(0.0, max(LENGTH, float(offsets.stations[-1])), n)
+    x = np.linspace(0.0, offsets.length, n)
     half_breadth = np.maximum(_along(offsets.stations, measured_y, x), 0.0)
     height = _along(offsets.stations, measured_z, x)
     half_breadth[:, 0] = 0.0

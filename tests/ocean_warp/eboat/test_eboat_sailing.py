@@ -53,8 +53,14 @@ def test_boom_swings_to_leeward_within_the_sheet_limit(device):
     np.testing.assert_allclose(boom, [math.radians(50), -math.radians(50)], atol=1e-4)  # at the limit, leeward
 
 
-def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
-    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=1.0)), 2, device=device)
+@pytest.mark.parametrize("hull", ["real", "procedural"])
+def test_mirrored_states_give_mirrored_forces_and_motions(device, rng, hull):
+    """Mirror images (port for starboard) feel mirrored forces; a mirror-symmetric boat then moves as mirror
+    images. The real boat's forces are checked; its motion is not: the URDF puts its centre of gravity
+    0.17 mm to port, with products of inertia from the deck and racks, which over 4 s part the two paths by
+    a few mm (within the tolerance with those zeroed, 2026-11-28)."""
+    sim = EBoatSimulator(EBoatSimulatorConfig(boat=EBoatConfig(hull=hull), wind=ow.WindConfig(speed=1.0)), 2,
+                         device=device)
     heading, roll, pitch = rng.uniform(-math.pi, math.pi), rng.uniform(-0.2, 0.2), rng.uniform(-0.05, 0.05)
     wind_direction = rng.uniform(-math.pi, math.pi)
     nu = np.concatenate([rng.uniform(-1, 2, 3) * [1, 0.3, 0.1], rng.uniform(-0.2, 0.2, 3)])
@@ -73,6 +79,8 @@ def test_mirrored_states_give_mirrored_forces_and_motions(device, rng):
     wrench = sim.fleet.forces.hydro_wrench.numpy() + sim.fleet.forces.model_wrench.numpy()
     scale = np.abs(wrench[0]).max()
     np.testing.assert_allclose(wrench[1], wrench[0] * flip_force, atol=1e-4 * scale)
+    if hull == "real":
+        return
     # 4 s: on the physics profile a difference of rounding grows about 2x per 0.5 s in some states (rng seed
     # 1935798459: 1e-6 -> 7e-3 rad/s of roll rate over 8 s, from 1e-6 at the start: no asymmetry of the model).
     state = run(sim, 4.0)

@@ -17,7 +17,7 @@ from scipy.spatial.transform import Rotation
 
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
-from ocean_warp.eboat.offsets_hull import parse_hull_offsets
+from ocean_warp.eboat.offsets_hull import offsets_hull, parse_hull_offsets
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.eboat.urdf_links import urdf_links
 from ocean_warp.frames import roll_pitch_yaw
@@ -294,7 +294,13 @@ def test_real_boat_rests_upright_near_its_origin_in_the_simulator(device):
 def test_bad_offsets_tables_are_refused():
     good = ("x_m,bottom_z_m,y_at_bottom_plus_3mm,y_at_z-0.200,y_at_z-0.100\n"
             "0.0,-0.3,0.30,0.32,0.34\n1.0,-0.3,0.30,0.32,0.34\n")
-    assert len(parse_hull_offsets(good).stations) == 2
+    offsets = parse_hull_offsets(good)
+    assert len(offsets.stations) == 2 and offsets.length == 1.0
+    # A table's own hull: 1 m from the transom, its sides flaring 0.02 m per 0.1 m up to 0.36 m at the sheer.
+    box = offsets_hull(4, 3, offsets=offsets)
+    assert np.ptp(box.vertices[:, 0]) == pytest.approx(1.0) and np.ptp(box.vertices[:, 1]) == pytest.approx(0.72)
+    with pytest.raises(ValueError, match="the stations must lie in \\[0, length\\]"):
+        parse_hull_offsets(good, length=0.5)
     with pytest.raises(ValueError, match="header must start x_m, bottom_z_m, y_at_bottom_plus_3mm"):
         parse_hull_offsets(good.replace("x_m", "station"))
     with pytest.raises(ValueError, match="waterline columns must be named y_at_z<height>"):
