@@ -93,6 +93,9 @@ class HullMeshes:
     grid over the hull's plan, from the grid's centre (see :func:`water_motion_under_hull`)."""
     wave_point_center: wp.array(dtype=wp.vec3)
     """Per hull type: the grid's centre, body frame [m] (z 0)."""
+    seakeeping: wp.array(dtype=int)
+    """Per hull type: 1 where it has a hydrodynamic database, whose radiation and diffraction need the water's
+    motion under the hull (the wave points are sampled only then)."""
     wave_point_spread: wp.array(dtype=wp.vec2)
     """Per hull type: (sum x^2, sum y^2) over its wave points [m^2]."""
 
@@ -451,6 +454,26 @@ def wave_point_moments(surface: OceanSurface, meshes: HullMeshes, kind: int, poi
     return wave_moments(v[0], v[1], v[2], x * v[0], x * v[1], x * v[2], y * v[0], y * v[1], y * v[2])
 
 
+wrench_and_moments = wp.types.vector(length=15, dtype=wp.float32)
+"""A wrench (6) and the wave moments (9), reduced over a block in one pass."""
+
+
+@wp.func
+def _wrench_and_moments(w: vec6, m: wave_moments) -> wrench_and_moments:
+    return wrench_and_moments(w[0], w[1], w[2], w[3], w[4], w[5], m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7],
+                              m[8])
+
+
+@wp.func
+def _wrench_part(both: wrench_and_moments) -> vec6:
+    return vec6(both[0], both[1], both[2], both[3], both[4], both[5])
+
+
+@wp.func
+def _moments_part(both: wrench_and_moments) -> wave_moments:
+    return wave_moments(both[6], both[7], both[8], both[9], both[10], both[11], both[12], both[13], both[14])
+
+
 @wp.func
 def water_motion_under_hull(meshes: HullMeshes, kind: int, sums: wave_moments, rotation: wp.quat) -> vec6:
     """The rigid motion that fits the water's velocity over the hull's wave points, in least squares: the
@@ -562,12 +585,11 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
         if lane == 0:
             boat_water_velocity[boat] = flow_at_origin
         moments = wave_moments()
-        for point in range(lane, WAVE_POINTS, wp.block_dim()):
-            moments += wave_point_moments(surface, meshes, kind, point, origin, rotation, origin_shift, currents, boat)
-        moment_sums = wp.tile_sum(wp.tile(moments, preserve_type=True))
-        if lane == 0:
-            wave_motion_update(water_motion_under_hull(meshes, kind, moment_sums[0], rotation), water.substep, boat,
-                               wave_velocity, wave_acceleration)
+        seakeeping = meshes.seakeeping[kind] != 0
+        if seakeeping:
+            for point in range(lane, WAVE_POINTS, wp.block_dim()):
+                moments += wave_point_moments(surface, meshes, kind, point, origin, rotation, origin_shift, currents,
+                                              boat)
 
         water_at = wp.tile_zeros(shape=(slots,), dtype=wp.vec4, storage="shared")
         for round_index in range(vertex_rounds):
@@ -599,9 +621,13 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
             if water.slamming != 0:
                 total += slamming_wrench(r0, r1, r2, w0, w1, w2, linear, angular, meshes.mass[kind],
                                          meshes.surface_area[kind], swept_rate, triangle_offset[boat] + t, water)
-        summed = wp.tile_sum(wp.tile(total, preserve_type=True))
+        # One block reduction for the wrench and the wave moments together.
+        summed = wp.tile_sum(wp.tile(_wrench_and_moments(total, moments), preserve_type=True))[0]
         if lane == 0:
             surge = linear[0] - flow_at_origin[0]
-            wrench[boat] = summed[0] + residuary_wrench(meshes, kind, surge, rotation, water)
+            wrench[boat] = _wrench_part(summed) + residuary_wrench(meshes, kind, surge, rotation, water)
+            if seakeeping:
+                wave_motion_update(water_motion_under_hull(meshes, kind, _moments_part(summed), rotation),
+                                   water.substep, boat, wave_velocity, wave_acceleration)
 
     return hull_wrenches

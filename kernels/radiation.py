@@ -14,18 +14,26 @@ out over the grid, as they do in the Froude-Krylov pressure).
 
 Layout: the terms of hull type t are ``first_term[t]`` .. ``first_term[t + 1] - 1``; term e couples DOF
 ``column[e]`` into DOF ``row[e]`` (0..5: surge, sway, heave, roll, pitch, yaw) through ``order[e]`` states
-at ``state_offset[e]`` in the boat's block of ``states_per_boat``, its coefficients at ``coefficient_offset[e]``
-in ``coefficients``: Phi (order x order, row-major), then Gamma (order), then C (order).
+from state index ``state_offset[e]`` of the boat's ``states_per_boat``, its coefficients at
+``coefficient_offset[e]`` in ``coefficients``: Phi (order x order, row-major), then Gamma (order), then C (order).
+The states are stored index-major, state i of boat b at ``i * boats + b``, so that neighbouring threads (boats)
+read neighbouring words.
 """
 
 from __future__ import annotations
 
 import warp as wp
 
+from .hull_forces import NO_WAVE_HISTORY
 from .spatial import vec6
 
-__all__ = ["RadiationModel", "MAX_TERM_ORDER", "radiation_force", "advance_radiation", "diffraction_wrench",
-           "reset_radiation_masked"]
+FROZEN = wp.constant(1)
+"""``kernels.rigid_body.STATUS_NONFINITE``: a boat frozen at its last finite state."""
+MAX_TERMS = 36
+"""Most radiation terms of one hull type (every pair of the six degrees of freedom)."""
+
+__all__ = ["RadiationModel", "MAX_TERM_ORDER", "radiation_force", "advance_radiation_terms", "diffraction_wrench",
+           "reset_radiation_masked", "MAX_TERMS"]
 
 MAX_TERM_ORDER = wp.constant(8)
 """Most states of one kernel's model."""
@@ -50,45 +58,71 @@ class RadiationModel:
     has_database: wp.array(dtype=int)
     """(types,) 1 where the type has a hydrodynamic database (radiation and diffraction on)."""
     states_per_boat: int
-    """Length of each boat's block of ``radiation_state``."""
+    """The radiation states of each boat (``radiation_state`` holds states_per_boat x boats)."""
+    max_terms: int
+    """The most terms of any type (``radiation_output`` holds terms x boats, and the term kernel's second
+    launch dimension)."""
 
 
 @wp.func
-def radiation_force(model: RadiationModel, kind: int, boat: int, state: wp.array(dtype=float)) -> vec6:
-    """mu = sum over the type's terms of C x: the radiation memory force [N] and moment [N m], body frame,
-    about the origin (it acts against the motion: the equations of motion subtract it)."""
+def radiation_force(model: RadiationModel, kind: int, boat: int, output: wp.array(dtype=float)) -> vec6:
+    """mu: the radiation memory force [N] and moment [N m], body frame, about the origin (it acts against the
+    motion: the equations of motion subtract it), summed from the terms' outputs C x (``output[term N + boat]``,
+    written by :func:`advance_radiation_terms`)."""
     mu = vec6()
-    block = boat * model.states_per_boat
+    boats = output.shape[0] / wp.max(model.first_term[model.first_term.shape[0] - 1], 1)
     for term in range(model.first_term[kind], model.first_term[kind + 1]):
-        order = model.order[term]
-        first = block + model.state_offset[term]
-        c = model.coefficient_offset[term] + order * order + order
-        total = float(0.0)
-        for i in range(order):
-            total += model.coefficients[c + i] * state[first + i]
         row = model.row[term]
-        mu[row] = mu[row] + total
+        mu[row] = mu[row] + output[term * boats + boat]
     return mu
 
 
-@wp.func
-def advance_radiation(model: RadiationModel, kind: int, boat: int, nu_r: vec6, state: wp.array(dtype=float)):
-    """x <- Phi x + Gamma nu_r[column] for every term of the boat's type (exact for nu_r held over the substep)."""
-    block = boat * model.states_per_boat
-    for term in range(model.first_term[kind], model.first_term[kind + 1]):
-        order = model.order[term]
-        first = block + model.state_offset[term]
-        phi = model.coefficient_offset[term]
-        gamma = phi + order * order
-        drive = nu_r[model.column[term]]
-        old = _term_vector()
-        for i in range(order):
-            old[i] = state[first + i]
-        for i in range(order):
-            total = model.coefficients[gamma + i] * drive
-            for j in range(order):
-                total += model.coefficients[phi + i * order + j] * old[j]
-            state[first + i] = total
+@wp.kernel(enable_backward=False)
+def advance_radiation_terms(
+    model: RadiationModel,
+    hull_type: wp.array(dtype=int),
+    velocity: wp.array(dtype=vec6),
+    orientation: wp.array(dtype=wp.quat),
+    wave_velocity: wp.array(dtype=vec6),
+    status: wp.array(dtype=int),
+    state: wp.array(dtype=float),
+    output: wp.array(dtype=float),
+):
+    """One substep of every boat's radiation terms (launch dim (boats, most terms of a type)): x <- Phi x +
+    Gamma nu_r[column], nu_r the hull's velocity relative to the water's motion under it, body frame (a boat
+    before its first substep, with no water motion yet, counts it at rest), and the term's output C x for the
+    next substep's equations of motion. A boat flagged non-finite keeps its states."""
+    boat, local = wp.tid()
+    kind = hull_type[boat]
+    term = model.first_term[kind] + local
+    if term >= model.first_term[kind + 1] or (status[boat] & FROZEN) != 0:
+        return
+    boats = hull_type.shape[0]
+    wave = wave_velocity[boat]
+    if wave[0] == NO_WAVE_HISTORY:
+        wave = vec6()
+    rotation = orientation[boat]
+    linear = wp.quat_rotate_inv(rotation, wp.vec3(wave[0], wave[1], wave[2]))
+    angular = wp.quat_rotate_inv(rotation, wp.vec3(wave[3], wave[4], wave[5]))
+    nu = velocity[boat]
+    relative = nu - vec6(linear[0], linear[1], linear[2], angular[0], angular[1], angular[2])
+    drive = relative[model.column[term]]
+    order = model.order[term]
+    first = model.state_offset[term] * boats + boat
+    phi = model.coefficient_offset[term]
+    gamma = phi + order * order
+    c = gamma + order
+    old = _term_vector()
+    for i in range(order):
+        old[i] = state[first + i * boats]
+    total_output = float(0.0)
+    for i in range(order):
+        value = model.coefficients[gamma + i] * drive
+        for j in range(order):
+            value += model.coefficients[phi + i * order + j] * old[j]
+        state[first + i * boats] = value
+        total_output += model.coefficients[c + i] * value
+    output[term * boats + boat] = total_output
 
 
 @wp.func
@@ -99,8 +133,15 @@ def diffraction_wrench(model: RadiationModel, kind: int, water_acceleration: vec
 
 
 @wp.kernel(enable_backward=False)
-def reset_radiation_masked(mask: wp.array(dtype=wp.int32), states_per_boat: int, state: wp.array(dtype=float)):
-    """Zero the radiation states of every boat whose ``mask`` is non-zero (launch dim (boats, states_per_boat))."""
+def reset_radiation_masked(mask: wp.array(dtype=wp.int32), state: wp.array(dtype=float),
+                           output: wp.array(dtype=float)):
+    """Zero the radiation states and outputs of every boat whose ``mask`` is non-zero (launch dim (boats,
+    max(states per boat, terms)))."""
     boat, index = wp.tid()
-    if mask[boat] != 0:
-        state[boat * states_per_boat + index] = 0.0
+    if mask[boat] == 0:
+        return
+    boats = mask.shape[0]
+    if index * boats + boat < state.shape[0]:
+        state[index * boats + boat] = 0.0
+    if index * boats + boat < output.shape[0]:
+        output[index * boats + boat] = 0.0

@@ -24,7 +24,7 @@ from __future__ import annotations
 import warp as wp
 
 from .hull_forces import NO_WAVE_HISTORY
-from .radiation import RadiationModel, advance_radiation, diffraction_wrench, radiation_force
+from .radiation import RadiationModel, diffraction_wrench, radiation_force
 from .spatial import vec6, wrench
 
 __all__ = [
@@ -254,9 +254,8 @@ def integrate_boats(
     wrench_body: wp.array(dtype=vec6),
     water_velocity: wp.array(dtype=wp.vec3),
     radiation: RadiationModel,
-    wave_velocity: wp.array(dtype=vec6),
     wave_acceleration: wp.array(dtype=vec6),
-    radiation_state: wp.array(dtype=float),
+    radiation_output: wp.array(dtype=float),
     position: wp.array(dtype=wp.vec3),
     orientation: wp.array(dtype=wp.quat),
     velocity: wp.array(dtype=vec6),
@@ -282,7 +281,7 @@ def integrate_boats(
     tau = hydro_wrench[boat] + model_wrench[boat] + wrench(force, moment)
     seakeeping = radiation.has_database[kind] != 0
     if seakeeping:
-        tau = (tau - radiation_force(radiation, kind, boat, radiation_state)
+        tau = (tau - radiation_force(radiation, kind, boat, radiation_output)
                + diffraction_wrench(radiation, kind, _rotate_wrench_to_body(rotation, wave_acceleration[boat])))
 
     current = water_velocity[boat]
@@ -313,13 +312,6 @@ def integrate_boats(
     velocity[boat] = new_nu
     position[boat] = new_position
     orientation[boat] = new_rotation
-    if seakeeping:
-        # The memory follows the hull's motion relative to the water's (a steady drift with a current radiates
-        # nothing; a hull that moves with the waves radiates nothing either).
-        wave = wave_velocity[boat]
-        if wave[0] == NO_WAVE_HISTORY:
-            wave = vec6()
-        advance_radiation(radiation, kind, boat, new_nu - _rotate_wrench_to_body(rotation, wave), radiation_state)
     if wp.quat_rotate(new_rotation, wp.vec3(0.0, 0.0, 1.0))[2] < bounds.min_uprightness:
         flags = flags | STATUS_CAPSIZED
     if new_position[2] > bounds.max_altitude:

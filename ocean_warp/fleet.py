@@ -12,7 +12,7 @@ import warp as wp
 from .boat_type import BoatType
 from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, NO_WAVE_HISTORY, WAVE_POINTS, HullMeshes
 from .kernels.radiation import reset_radiation_masked
-from .radiation import radiation_states_per_boat
+from .radiation import radiation_states_per_boat, radiation_terms_per_boat
 from .resistance import FROUDE_SAMPLES
 from .kernels.rigid_body import (
     STATUS_BAD_INPUT,
@@ -113,6 +113,8 @@ class FleetModel:
     """Triangles of the largest hull."""
     radiation_states: int
     """S, the radiation states of each boat (the most of any type: ``ocean_warp.radiation``)."""
+    radiation_terms: int
+    """R, the radiation terms of each boat (the most of any type)."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -139,8 +141,11 @@ class FleetState:
     wave_acceleration: wp.array
     """(N,) vec6: its rate of change along the boat's path over the last substep, world frame [m/s^2, rad/s^2]."""
     radiation_state: wp.array
-    """(N * S,) float: each boat's block of S radiation states (``FleetModel.radiation_states``; Cummins' memory,
-    ``ocean_warp.kernels.radiation``), in the units of its type's state-space models."""
+    """(S * N,) float: the S radiation states of every boat (``FleetModel.radiation_states``; Cummins' memory,
+    ``ocean_warp.kernels.radiation``), state i of boat b at i N + b, in the units of its type's models."""
+    radiation_output: wp.array
+    """(R * N,) float: each radiation term's output C x [N or N m] for the next substep, term e of boat b at
+    e N + b."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -198,7 +203,8 @@ class Fleet:
             meshes=_hull_meshes(boat_types, device), body=_body_parameters(boat_types, device),
             triangle_offset=wp.array(_exclusive_sum(boat_triangles), dtype=int, device=device),
             total_triangles=total_triangles, max_vertex_count=max_vertex_count,
-            max_triangle_count=int(triangle_counts.max()), radiation_states=radiation_states_per_boat(boat_types))
+            max_triangle_count=int(triangle_counts.max()), radiation_states=radiation_states_per_boat(boat_types),
+            radiation_terms=radiation_terms_per_boat(boat_types))
         """What describes the boats (see :class:`FleetModel`)."""
 
         n = self.count
@@ -211,7 +217,8 @@ class Fleet:
             swept_rate=wp.full(max(total_triangles, 1), NO_SWEPT_RATE, dtype=float, device=device),
             wave_velocity=wp.full(n, vec6(NO_WAVE_HISTORY, 0.0, 0.0, 0.0, 0.0, 0.0), dtype=vec6, device=device),
             wave_acceleration=wp.zeros(n, dtype=vec6, device=device),
-            radiation_state=wp.zeros(max(n * self.model.radiation_states, 1), dtype=float, device=device))
+            radiation_state=wp.zeros(max(n * self.model.radiation_states, 1), dtype=float, device=device),
+            radiation_output=wp.zeros(max(n * self.model.radiation_terms, 1), dtype=float, device=device))
         """What moves (see :class:`FleetState`)."""
         self.control = FleetControl(wrench_world=wp.zeros(n, dtype=vec6, device=device),
                                     wrench_body=wp.zeros(n, dtype=vec6, device=device))
@@ -282,8 +289,8 @@ class Fleet:
                           float(NO_SWEPT_RATE)],
                   outputs=[self.state.swept_rate])
         if model.radiation_states:
-            wp.launch(reset_radiation_masked, dim=(self.count, model.radiation_states), device=device,
-                      inputs=[mask, model.radiation_states], outputs=[self.state.radiation_state])
+            wp.launch(reset_radiation_masked, dim=(self.count, max(model.radiation_states, model.radiation_terms)),
+                      device=device, inputs=[mask], outputs=[self.state.radiation_state, self.state.radiation_output])
 
     # --- host copies, for inspection and tests --------------------------------------------------------
     def numpy(self) -> dict[str, np.ndarray]:
@@ -335,6 +342,7 @@ def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:
     meshes.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
     _add_residuary_tables(meshes, boat_types, device)
     _add_wave_points(meshes, hulls, device)
+    meshes.seakeeping = wp.array([int(t.seakeeping is not None) for t in boat_types], dtype=int, device=device)
     return meshes
 
 

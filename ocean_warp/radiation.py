@@ -8,7 +8,7 @@ import warp as wp
 
 from .kernels.radiation import MAX_TERM_ORDER, RadiationModel
 
-__all__ = ["radiation_states_per_boat", "radiation_model", "zero_order_hold"]
+__all__ = ["radiation_states_per_boat", "radiation_terms_per_boat", "radiation_model", "zero_order_hold"]
 
 
 def _terms(boat_type) -> tuple:
@@ -19,6 +19,11 @@ def _terms(boat_type) -> tuple:
 def radiation_states_per_boat(boat_types) -> int:
     """The largest number of radiation states of any of ``boat_types`` (each boat gets a block this long)."""
     return max((sum(len(term.b) for term in _terms(t)) for t in boat_types), default=0)
+
+
+def radiation_terms_per_boat(boat_types) -> int:
+    """The most radiation terms of any of ``boat_types``."""
+    return max((len(_terms(t)) for t in boat_types), default=0)
 
 
 def _matrix_exponential(matrix: np.ndarray) -> np.ndarray:
@@ -87,4 +92,5 @@ def radiation_model(boat_types, substep: float, device) -> RadiationModel:
                                          device=device)
     model.has_database = wp.array(has_database, dtype=int, device=device)
     model.states_per_boat = radiation_states_per_boat(boat_types)
+    model.max_terms = radiation_terms_per_boat(boat_types)
     return model

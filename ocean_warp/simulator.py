@@ -14,6 +14,7 @@ from .hydrodynamics_config import HydrodynamicsConfig
 from .kernels.hull_forces import WaterModel, hull_wrenches_kernel, sample_origin_water
 from .kernels.rigid_body import SafetyBounds, advance_time, integrate_boats
 from .ocean import Ocean
+from .kernels.radiation import advance_radiation_terms
 from .radiation import radiation_model
 from .replay import ReplayedLaunches
 from .torch_streams import ordered_with_torch
@@ -152,15 +153,19 @@ class Simulator:
                                  fleet.forces.hydro_wrench])
 
     def integrate(self) -> None:
-        """One substep of the rigid bodies with the wrenches computed last."""
+        """One substep of the rigid bodies with the wrenches computed last, then of their radiation memory."""
         fleet = self.fleet
         wp.launch(integrate_boats, dim=fleet.count, device=self.device,
                   inputs=[fleet.model.body, fleet.model.hull_type, self.ocean.config.water.gravity, self.config.substep_dt,
                           self.bounds, fleet.forces.hydro_wrench, fleet.forces.model_wrench, fleet.control.wrench_world, fleet.control.wrench_body,
-                          fleet.state.water_velocity, self.radiation, fleet.state.wave_velocity,
-                          fleet.state.wave_acceleration],
-                  outputs=[fleet.state.radiation_state, fleet.state.position, fleet.state.orientation,
-                           fleet.state.velocity, fleet.state.status])
+                          fleet.state.water_velocity, self.radiation, fleet.state.wave_acceleration,
+                          fleet.state.radiation_output],
+                  outputs=[fleet.state.position, fleet.state.orientation, fleet.state.velocity, fleet.state.status])
+        if fleet.model.radiation_terms:
+            wp.launch(advance_radiation_terms, dim=(fleet.count, fleet.model.radiation_terms), device=self.device,
+                      inputs=[self.radiation, fleet.model.hull_type, fleet.state.velocity, fleet.state.orientation,
+                              fleet.state.wave_velocity, fleet.state.status],
+                      outputs=[fleet.state.radiation_state, fleet.state.radiation_output])
 
     def substep(self, *, update_ocean: bool = True) -> None:
         """Ocean (optionally), current, water forces, force models, integration, time += dt / substeps."""

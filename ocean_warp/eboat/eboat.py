@@ -99,6 +99,13 @@ class EBoatConfig:
     """The real boat's keel: "cad" (default: the URDF's 40.04 kg spread through fin and bulb) or "lead_bulb"
     (an assumption, not a fact: a 44 kg lead bulb on a solid GRP fin, 10.8 kg heavier, its centre of gravity
     0.03-0.05 m below the waterline as the sheet estimates). Only with ``hull`` "real"."""
+    seakeeping: bool = False
+    """Seakeeping from potential flow for the real hull in the physics profile's mesh model: the shipped
+    hydrodynamic database's infinite-frequency added mass, radiation memory and diffraction load
+    (``ocean_warp.seakeeping``, ``ocean_warp.kernels.radiation``), with the drag terms that stood in for them
+    removed. Off by default for now: against capytaine its RAOs hold within 10 % at 1.5-5 s, but the boat under
+    sail with it is not yet validated (it broaches on a broad reach in 7 m/s, its polar is erratic there, and the
+    step costs 40 % more; ``benchmarks/RESULTS.md``, issue 33)."""
     hull_shape: HullShape = dataclasses.field(default_factory=HullShape)
     """Dimensions of the procedural canoe body (``hull`` "procedural" only)."""
     hull_triangles: int | None = None
@@ -117,6 +124,8 @@ class EBoatConfig:
             object.__setattr__(self, "hydrostatics", default)
         object.__setattr__(self, "hydrostatics", require_choice("EBoatConfig", "hydrostatics", self.hydrostatics,
                                                                 Hydrostatics))
+        if not isinstance(self.seakeeping, bool):
+            raise ValueError(f"EBoatConfig.seakeeping must be True or False, got {self.seakeeping!r}")
         if not isinstance(self.original_tuning, bool):
             raise ValueError(f"EBoatConfig.original_tuning must be True or False, got {self.original_tuning!r}")
         object.__setattr__(self, "hull", require_choice("EBoatConfig", "hull", self.hull, HullKind))
@@ -130,6 +139,10 @@ class EBoatConfig:
         elif self.ballast is not Ballast.CAD:
             raise ValueError(f"EBoatConfig.ballast {self.ballast.value!r} changes the real boat's keel; the "
                              "procedural hull has only the sheet's link table ('cad')")
+        if self.seakeeping and (self.hull is not HullKind.REAL or self.profile is not Profile.PHYSICS
+                                or self.hydrostatics is not Hydrostatics.MESH):
+            raise ValueError("EBoatConfig.seakeeping needs the real hull in the physics profile's mesh model (its "
+                             "hydrodynamic database is the real hull's)")
         self._check_hull_triangles()
 
     def _check_hull_triangles(self) -> None:
@@ -154,8 +167,9 @@ class EBoatConfig:
 
     @property
     def uses_hydro_database(self) -> bool:
-        """Whether this boat's hull has a hydrodynamic database: the real hull, meshed, in the physics profile."""
-        return (self.hull is HullKind.REAL and self.profile is Profile.PHYSICS
+        """Whether this boat's hull sails with its hydrodynamic database: ``seakeeping`` on, for the real hull,
+        meshed, in the physics profile."""
+        return (self.seakeeping and self.hull is HullKind.REAL and self.profile is Profile.PHYSICS
                 and self.hydrostatics is Hydrostatics.MESH)
 
     @property

@@ -12,6 +12,37 @@ from tests import reference_hull
 from tests.hull_setups import random_rotations, rotation_matrix
 
 
+def periodic_bilinear(field: np.ndarray, cell: float, points: np.ndarray) -> np.ndarray:
+    """numpy's bilinear interpolation of a periodic grid field [iy, ix] at world points (M, 2) [m]."""
+    n = field.shape[0]
+    g = points / cell
+    i0 = np.floor(g).astype(np.int64)
+    t = g - i0
+    ix0, iy0 = i0[:, 0] % n, i0[:, 1] % n
+    ix1, iy1 = (ix0 + 1) % n, (iy0 + 1) % n
+    lower = (1 - t[:, 0]) * field[iy0, ix0] + t[:, 0] * field[iy0, ix1]
+    upper = (1 - t[:, 0]) * field[iy1, ix0] + t[:, 0] * field[iy1, ix1]
+    return (1 - t[:, 1]) * lower + t[:, 1] * upper
+
+
+def pressure_heads(ocean: ow.Ocean, sample, z: np.ndarray) -> np.ndarray:
+    """p / (rho g) [m] at heights z under the sampled surface points: hydrostatic up to the surface above still
+    water; below it -z plus the waves' dynamic head, linear in z between the surface and the ocean's three
+    depths (each field read at the sample's grid position) and held below the deepest."""
+    height = sample.height.astype(np.float64)
+    levels = [0.0] + [-d for d in ocean.config.pressure_depths]
+    heads = [height] + [periodic_bilinear(ocean.field_numpy(f"pressure_head_{k}").astype(np.float64),
+                                          ocean.config.cell_size, sample.grid_position.astype(np.float64))
+                        for k in (1, 2, 3)]
+    dynamic = heads[3].copy()
+    for upper in range(3):
+        z0, z1 = levels[upper], levels[upper + 1]
+        inside = (z <= z0) & (z >= z1)
+        fraction = (z - z0) / (z1 - z0)
+        dynamic = np.where(inside, heads[upper] + fraction * (heads[upper + 1] - heads[upper]), dynamic)
+    return np.where(z >= 0.0, height - z, dynamic - z)
+
+
 @pytest.mark.parametrize("falloffs", ["random", "special"])
 def test_hull_wrenches_match_numpy_reference(device, rng, falloffs):
     """``falloffs``: random exponents of the drag's cos t, or 0.5 and 1, which the kernel takes without pow."""
@@ -50,7 +81,7 @@ def test_hull_wrenches_match_numpy_reference(device, rng, falloffs):
         rotation = rotation_matrix(orientations[boat])
         world = positions[boat] + hull.vertices @ rotation.T
         sample = ocean.sample(world[:, :2])
-        depth = sample.height.astype(np.float64) - world[:, 2]
+        depth = pressure_heads(ocean, sample, world[:, 2])
         flow = sample.velocity.astype(np.float64) @ rotation  # world -> body
         boat_flow = ocean.sample(positions[boat, :2]).velocity[0].astype(np.float64) @ rotation
         expected = reference_hull.hull_wrench(hull.vertices, hull.triangles, depth, flow, velocities[boat], hydro,

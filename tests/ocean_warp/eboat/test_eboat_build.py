@@ -78,10 +78,21 @@ def test_boat_type_carries_the_composite_and_the_sheet_hydrodynamics(hull):
     assert eboat.boat_type.mass == pytest.approx(composite.mass)
     np.testing.assert_allclose(eboat.boat_type.center_of_mass, composite.center_of_mass)
     np.testing.assert_allclose(eboat.boat_type.inertia, composite.inertia)
-    np.testing.assert_allclose(np.diag(eboat.boat_type.added_mass), [0, 124, 148, 0, 0, 0])  # sheet: X, Y, Z added mass
-    # Mesh hydrostatics: the hull damps surge, sway and heave; the sheet's roll and pitch terms stay (V-C: 25); the
-    # physics profile's keel, rudder and hull damp yaw (no N_r), the seed profile keeps the sheet's 120.
+    np.testing.assert_allclose(np.diag(eboat.boat_type.added_mass), [0, 124, 148, 0, 0, 0])  # sheet: X, Y, Z
+    # Mesh hydrostatics: the hull damps surge, sway and heave; the sheet's roll and pitch terms stay (V-C: 25);
+    # the physics profile's keel, rudder and hull damp yaw (no N_r), the seed profile keeps the sheet's 120.
     np.testing.assert_allclose(eboat.boat_type.linear_damping, [0, 0, 0, 25, 25, 0])
+    assert eboat.boat_type.seakeeping is None
+    if hull == "real":
+        # With seakeeping from potential flow: the database's A_inf is the added mass, radiation damps the hull,
+        # and the sheet's linear terms, which stood in for that, are gone; so are the linear cross-flow drag terms.
+        eboat = EBoat(EBoatConfig(hull=hull, seakeeping=True))
+        database = eboat.boat_type.seakeeping
+        np.testing.assert_allclose(eboat.boat_type.added_mass, database.added_mass_infinite)
+        assert 300.0 < database.added_mass_infinite[2, 2] < 900.0  # heave: a flat bottom's large added mass
+        np.testing.assert_allclose(eboat.boat_type.linear_damping, [0, 0, 0, 0, 0, 0])
+        assert eboat.hydrodynamics.pressure_drag_linear == 0.0 and eboat.hydrodynamics.suction_linear == 0.0
+        assert eboat.hydrodynamics.pressure_drag_quadratic > 0.0
     seed_mesh = EBoat(EBoatConfig(hull=hull, profile="seed", hydrostatics="mesh")).boat_type
     np.testing.assert_allclose(seed_mesh.linear_damping, [0, 0, 0, 25, 25, 120])
     points = EBoat(EBoatConfig(hull=hull, version="V-A", hydrostatics="points")).boat_type
@@ -188,3 +199,10 @@ def test_bad_eboat_resets_are_refused(device):
         sim.reset([3])
     with pytest.raises(ValueError, match="EBoatSimulator.reset.wind_speed must be >= 0"):
         sim.reset(wind_speed=-2.0)
+
+
+@pytest.mark.parametrize("fields", [dict(seakeeping=1), dict(seakeeping=True, hull="procedural"),
+                                    dict(seakeeping=True, profile="seed"), dict(seakeeping=True, hydrostatics="points")])
+def test_seakeeping_is_the_real_meshed_hulls_and_a_switch(fields):
+    with pytest.raises(ValueError, match="EBoatConfig.seakeeping"):
+        EBoatConfig(**fields)
