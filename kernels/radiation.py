@@ -29,11 +29,8 @@ from .spatial import vec6
 
 FROZEN = wp.constant(1)
 """``kernels.rigid_body.STATUS_NONFINITE``: a boat frozen at its last finite state."""
-MAX_TERMS = 36
-"""Most radiation terms of one hull type (every pair of the six degrees of freedom)."""
-
 __all__ = ["RadiationModel", "MAX_TERM_ORDER", "radiation_force", "advance_radiation_terms", "diffraction_wrench",
-           "reset_radiation_masked", "MAX_TERMS"]
+           "reset_radiation_masked"]
 
 MAX_TERM_ORDER = wp.constant(8)
 """Most states of one kernel's model."""
@@ -67,13 +64,14 @@ class RadiationModel:
 @wp.func
 def radiation_force(model: RadiationModel, kind: int, boat: int, output: wp.array(dtype=float)) -> vec6:
     """mu: the radiation memory force [N] and moment [N m], body frame, about the origin (it acts against the
-    motion: the equations of motion subtract it), summed from the terms' outputs C x (``output[term N + boat]``,
-    written by :func:`advance_radiation_terms`)."""
+    motion: the equations of motion subtract it), summed from the terms' outputs C x (written by
+    :func:`advance_radiation_terms`: the type's term k of boat b at ``output[k N + b]``)."""
     mu = vec6()
-    boats = output.shape[0] / wp.max(model.first_term[model.first_term.shape[0] - 1], 1)
-    for term in range(model.first_term[kind], model.first_term[kind + 1]):
+    boats = output.shape[0] / model.max_terms
+    first = model.first_term[kind]
+    for term in range(first, model.first_term[kind + 1]):
         row = model.row[term]
-        mu[row] = mu[row] + output[term * boats + boat]
+        mu[row] = mu[row] + output[(term - first) * boats + boat]
     return mu
 
 
@@ -91,7 +89,7 @@ def advance_radiation_terms(
     """One substep of every boat's radiation terms (launch dim (boats, most terms of a type)): x <- Phi x +
     Gamma nu_r[column], nu_r the hull's velocity relative to the water's motion under it, body frame (a boat
     before its first substep, with no water motion yet, counts it at rest), and the term's output C x for the
-    next substep's equations of motion. A boat flagged non-finite keeps its states."""
+    next substep's equations of motion (the type's term k of boat b at ``k N + b``). A boat flagged non-finite keeps its states."""
     boat, local = wp.tid()
     kind = hull_type[boat]
     term = model.first_term[kind] + local
@@ -122,7 +120,7 @@ def advance_radiation_terms(
             value += model.coefficients[phi + i * order + j] * old[j]
         state[first + i * boats] = value
         total_output += model.coefficients[c + i] * value
-    output[term * boats + boat] = total_output
+    output[local * boats + boat] = total_output
 
 
 @wp.func

@@ -43,42 +43,47 @@ def test_zero_order_hold_matches_the_integral(rng):
 
 
 def test_heave_decay_follows_the_single_degree_of_freedom_solution(device, rng):
-    """A wall-sided box dropped in still water heaves as (m + A_inf) z'' + C x_r + rho g A_wp z = 0 with the
-    radiation states dx_r/dt = A x_r + B z': the simulator against the exact solution of that linear system."""
-    length, beam, height, draft = 2.0, 1.0, 0.6, 0.2
-    database = heave_database(rng)
+    """Wall-sided boxes dropped in still water heave as (m + A_inf) z'' + C x_r + rho g A_wp z = 0 with the
+    radiation states dx_r/dt = A x_r + B z': the simulator against the exact solution of that linear system, for
+    two hull types of one fleet, each with its own database (their terms and states kept apart)."""
+    length, beam, height = 2.0, 1.0, 0.6
+    drafts = (0.2, float(rng.uniform(0.15, 0.25)))
+    databases = (heave_database(rng), heave_database(rng))
     hull = ow.Hull.box(length, beam, height)
-    mass = RHO * length * beam * draft
-    boat = ow.BoatType(hull=hull, mass=mass, seakeeping=database)
-    fleet = ow.Fleet(boat, 1, device=device)
-    rest = 0.5 * height - draft  # the origin at the box's centre, its bottom at -draft
-    drop = rng.uniform(0.02, 0.04)
-    fleet.reset(position=[0.0, 0.0, rest + drop])
+    boats = [ow.BoatType(hull=hull, mass=RHO * length * beam * d, seakeeping=db) for d, db in zip(drafts, databases)]
+    fleet = ow.Fleet(boats, types=[1, 0, 1], device=device)
+    rests = [0.5 * height - d for d in drafts]  # the origin at the box's centre, its bottom at -draft
+    drops = rng.uniform(0.02, 0.04, size=3)
+    kinds = fleet.model.hull_type.numpy()
+    fleet.reset(position=[[5.0 * i, 0.0, rests[k] + drop] for i, (k, drop) in enumerate(zip(kinds, drops))])
     config = ow.SimulatorConfig(dt=0.01, substeps=4, hydrodynamics=ow.HydrodynamicsConfig().without_drag())
     simulator = ow.Simulator(calm_ocean(device), fleet, config)
     steps = 300
     heave = []
     for _ in range(steps):
         simulator.step()
-        heave.append(fleet.numpy()["position"][0, 2] - rest)
+        heave.append(fleet.numpy()["position"][:, 2] - np.array([rests[k] for k in kinds]))
+    heave = np.array(heave)
 
-    term = database.radiation[0]
-    total = mass + database.added_mass_infinite[2, 2]
-    stiffness = RHO * G * length * beam
-    system = np.zeros((4, 4))
-    system[0, 1] = 1.0
-    system[1, 0] = -stiffness / total
-    system[1, 2:] = -term.c / total
-    system[2:, 1] = term.b
-    system[2:, 2:] = term.a
-    state = np.array([drop, 0.0, 0.0, 0.0])
-    step_map, _ = zero_order_hold(system, np.zeros(4), config.dt)
-    expected = []
-    for _ in range(steps):
-        state = step_map @ state
-        expected.append(state[0])
-    heave, expected = np.array(heave), np.array(expected)
-    assert np.max(np.abs(heave - expected)) < 0.03 * drop
-    # The radiation damps it: after three seconds a fraction of the drop is left, and without the memory the
-    # box would still swing at its full drop (no other damping here).
-    assert np.max(np.abs(expected[-50:])) < 0.5 * drop
+    for boat, (kind, drop) in enumerate(zip(kinds, drops)):
+        database = databases[kind]
+        term = database.radiation[0]
+        total = boats[kind].mass + database.added_mass_infinite[2, 2]
+        stiffness = RHO * G * length * beam
+        system = np.zeros((4, 4))
+        system[0, 1] = 1.0
+        system[1, 0] = -stiffness / total
+        system[1, 2:] = -term.c / total
+        system[2:, 1] = term.b
+        system[2:, 2:] = term.a
+        state = np.array([drop, 0.0, 0.0, 0.0])
+        step_map, _ = zero_order_hold(system, np.zeros(4), config.dt)
+        expected = []
+        for _ in range(steps):
+            state = step_map @ state
+            expected.append(state[0])
+        expected = np.array(expected)
+        assert np.max(np.abs(heave[:, boat] - expected)) < 0.03 * drop
+        # The radiation damps it: after three seconds a fraction of the drop is left, and without the memory the
+        # box would still swing at its full drop (no other damping here).
+        assert np.max(np.abs(expected[-50:])) < 0.5 * drop
