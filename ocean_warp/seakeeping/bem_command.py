@@ -18,10 +18,10 @@ excitation forces and how they were computed; ocean_warp.seakeeping.HydroDatabas
 checks it against the hull. Prints the panels, the time taken, A_inf, the heave damping's peak, the natural
 period in heave and each fit's error.
 
-Needs capytaine (pip install -e '.[bem]'). A hull of about 1 000 panels takes about half a minute on two
-cores; a progress bar shows the frequencies where stderr is a terminal. A mesh that is not closed, a hull
-that would sink or float out of the water, and a missing capytaine are one line each, exit status 2, and
-nothing is written.
+Needs capytaine (pip install -e '.[bem]'). A hull of about 1 000 panels takes about a minute of CPU time (30 s
+to 2 min on two cores); a progress bar shows the frequencies where stderr is a terminal. A mesh that is not
+closed, a hull that would sink or float out of the water, and a missing capytaine are one line each, exit
+status 2, and nothing is written.
 """
 
 from __future__ import annotations
