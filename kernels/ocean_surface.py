@@ -26,6 +26,10 @@ __all__ = [
     "periodic_bilinear",
     "undisplaced_position",
     "undisplaced_position_near",
+    "LocalInversion",
+    "local_inversion",
+    "undisplaced_position_local",
+    "contracted_inversion",
     "inverted_displacement",
     "height_velocity_at_grid",
     "pressure_head",
@@ -84,11 +88,11 @@ def periodic_bilinear(surface: OceanSurface, field: int, xy: wp.vec2) -> wp.vec2
 
 
 @wp.func
-def inverted_displacement(surface: OceanSurface, xy: wp.vec2, start: wp.vec2) -> wp.vec2:
+def contracted_inversion(surface: OceanSurface, xy: wp.vec2, start: wp.vec2, contraction: float) -> wp.vec2:
     """The grid position q [m] whose displaced position q + choppiness * D(q) is ``xy`` [m], by the
-    fixed-point iteration q <- xy - choppiness * D(q) from ``start`` [m]. Each iteration shrinks the error
-    by about choppiness * |grad D|, which a steep sea at choppiness 1 brings to about 0.4, so the loop stops
-    once a step moves q less than the tolerance (the error left is then about as small), or after
+    fixed-point iteration q <- xy - choppiness * D(q) from ``start`` [m]. Each iteration leaves about
+    ``contraction`` (choppiness * |grad D|, at most 1) of the error before it, so once a step has moved q by s
+    the error left is about contraction * s: the loop stops when that is below the tolerance, or after
     ``inversion_iterations``."""
     q = start
     for _ in range(surface.inversion_iterations):
@@ -96,9 +100,17 @@ def inverted_displacement(surface: OceanSurface, xy: wp.vec2, start: wp.vec2) ->
         next_q = xy - surface.choppiness * wp.vec2(displacement[0], displacement[1])
         step = next_q - q
         q = next_q
-        if wp.dot(step, step) < surface.inversion_tolerance_sq:
+        if contraction * contraction * wp.dot(step, step) < surface.inversion_tolerance_sq:
             break
     return q
+
+
+@wp.func
+def inverted_displacement(surface: OceanSurface, xy: wp.vec2, start: wp.vec2) -> wp.vec2:
+    """:func:`contracted_inversion` without knowing the contraction: each iteration shrinks the error by about
+    choppiness * |grad D|, which a steep sea at choppiness 1 brings to about 0.4, so the loop stops once a step
+    moves q less than the tolerance (the error left is then about as small)."""
+    return contracted_inversion(surface, xy, start, 1.0)
 
 
 @wp.func
@@ -113,6 +125,57 @@ def undisplaced_position_near(surface: OceanSurface, xy: wp.vec2, shift: wp.vec2
     choppiness * D at a nearby point (``p - undisplaced_position(p)``). On a sea whose displacement varies
     little over a boat's length the start is already close, and the iteration stops after one or two steps."""
     return inverted_displacement(surface, xy, xy - shift)
+
+
+@wp.struct
+class LocalInversion:
+    """What a boat's block finds once at an anchor (its origin) to undo the choppy displacement at its points
+    cheaply: to first order about the anchor, the grid position of a world point p is
+    grid + (I + choppiness dD/dq)^-1 (p - anchor), within a few millimetres over a boat's length on a
+    moderate sea, so the fixed-point iteration started there usually ends after one step."""
+
+    anchor: wp.vec2
+    """World x, y [m] of the anchor."""
+    grid: wp.vec2
+    """Its grid position [m]."""
+    inverse_jacobian: wp.mat22
+    """(I + choppiness dD/dq)^-1 at the anchor."""
+    contraction: float
+    """Twice choppiness * |dD/dq| (Frobenius) at the anchor, at most 1: a bound on the share of its error each
+    iteration leaves near it (see :func:`contracted_inversion`)."""
+
+
+@wp.func
+def local_inversion(surface: OceanSurface, anchor: wp.vec2) -> LocalInversion:
+    """The :class:`LocalInversion` about world point ``anchor`` [m]: its grid position (to the tolerance) and the
+    displacement's gradient there by central differences over one cell of the interpolated field."""
+    local = LocalInversion()
+    local.anchor = anchor
+    local.grid = undisplaced_position(surface, anchor)
+    local.inverse_jacobian = wp.identity(n=2, dtype=float)
+    local.contraction = 0.0
+    if surface.inversion_iterations == 0:
+        return local
+    half = 0.5 / surface.inv_cell_size
+    scale = surface.choppiness * surface.inv_cell_size
+    q = local.grid
+    d_dx = scale * (periodic_bilinear(surface, FIELD_DISPLACEMENT, q + wp.vec2(half, 0.0))
+                    - periodic_bilinear(surface, FIELD_DISPLACEMENT, q - wp.vec2(half, 0.0)))
+    d_dy = scale * (periodic_bilinear(surface, FIELD_DISPLACEMENT, q + wp.vec2(0.0, half))
+                    - periodic_bilinear(surface, FIELD_DISPLACEMENT, q - wp.vec2(0.0, half)))
+    gradient = wp.mat22(d_dx[0], d_dy[0], d_dx[1], d_dy[1])
+    local.inverse_jacobian = wp.inverse(wp.identity(n=2, dtype=float) + gradient)
+    frobenius = wp.sqrt(wp.ddot(gradient, gradient))
+    local.contraction = wp.min(2.0 * frobenius, 1.0)
+    return local
+
+
+@wp.func
+def undisplaced_position_local(surface: OceanSurface, xy: wp.vec2, local: LocalInversion) -> wp.vec2:
+    """:func:`undisplaced_position` of ``xy`` [m] near ``local``'s anchor: started from the first-order estimate,
+    stopped by the anchor's contraction."""
+    start = local.grid + local.inverse_jacobian * (xy - local.anchor)
+    return contracted_inversion(surface, xy, start, local.contraction)
 
 
 @wp.func

@@ -102,7 +102,6 @@ class Simulator:
         time); every substep evaluates the ocean at it and advances it on the device."""
         self.block_dim = self.config.block_dim or (128 if self.device.is_cuda else 1)
         vertex_rounds = -(-fleet.model.max_vertex_count // self.block_dim)
-        self._hull_wrenches = hull_wrenches_kernel(vertex_rounds, self.block_dim)
         self.water = _water_model(self.config.hydrodynamics, ocean.config.water, self.config.substep_dt)
         """The hull pass's view of the hull model and of the ocean's water (its density, gravity, viscosity)."""
         self.radiation = radiation_model(fleet.model.boat_types, self.config.substep_dt, self.device)
@@ -116,6 +115,9 @@ class Simulator:
             current.follow(self.clock)
         self.current = current
         """The water's current (a :class:`~ocean_warp.Current`), or None: still water."""
+        self._hull_wrenches = hull_wrenches_kernel(
+            vertex_rounds, self.block_dim, wave_points=any(t.seakeeping is not None for t in fleet.model.boat_types),
+            currents=current is not None)
         self.current_field = current.field if current is not None else no_current(self.device)
         """What the force kernels read of the current (a field without rows when there is none)."""
         self.bounds = SafetyBounds()

@@ -84,6 +84,6 @@ def test_heave_decay_follows_the_single_degree_of_freedom_solution(device, rng):
             expected.append(state[0])
         expected = np.array(expected)
         assert np.max(np.abs(heave[:, boat] - expected)) < 0.03 * drop
-        # The radiation damps it: after three seconds a fraction of the drop is left, and without the memory the
-        # box would still swing at its full drop (no other damping here).
-        assert np.max(np.abs(expected[-50:])) < 0.5 * drop
+        # The radiation damps it: over the last 1.2 s (a heave period or more) less than 0.8 of the drop is left,
+        # where without the memory the box would still swing at its full drop (no other damping here).
+        assert np.max(np.abs(heave[-120:, boat])) < 0.8 * drop
