@@ -25,6 +25,7 @@ from __future__ import annotations
 import warp as wp
 
 from .hull_forces import NO_WAVE_HISTORY
+from .seakeeping_frame import heading_tilt, to_heading_frame
 from .spatial import vec6
 
 FROZEN = wp.constant(1)
@@ -63,7 +64,7 @@ class RadiationModel:
 
 @wp.func
 def radiation_force(model: RadiationModel, kind: int, boat: int, output: wp.array(dtype=float)) -> vec6:
-    """mu: the radiation memory force [N] and moment [N m], body frame, about the origin (it acts against the
+    """mu: the radiation memory force [N] and moment [N m], heading frame, about the origin (it acts against the
     motion: the equations of motion subtract it), summed from the terms' outputs C x (written by
     :func:`advance_radiation_terms`: the type's term k of boat b at ``output[k N + b]``)."""
     mu = vec6()
@@ -87,7 +88,8 @@ def advance_radiation_terms(
     output: wp.array(dtype=float),
 ):
     """One substep of every boat's radiation terms (launch dim (boats, most terms of a type)): x <- Phi x +
-    Gamma nu_r[column], nu_r the hull's velocity relative to the water's motion under it, body frame (a boat
+    Gamma nu_r[column], nu_r the hull's velocity relative to the water's motion under it, in the heading frame
+    (``kernels.seakeeping_frame``, as are the outputs) (a boat
     before its first substep, with no water motion yet, counts it at rest), and the term's output C x for the
     next substep's equations of motion (the type's term k of boat b at ``k N + b``). A boat flagged non-finite keeps its states."""
     boat, local = wp.tid()
@@ -104,6 +106,7 @@ def advance_radiation_terms(
     angular = wp.quat_rotate_inv(rotation, wp.vec3(wave[3], wave[4], wave[5]))
     nu = velocity[boat]
     relative = nu - vec6(linear[0], linear[1], linear[2], angular[0], angular[1], angular[2])
+    relative = to_heading_frame(heading_tilt(rotation), relative)
     drive = relative[model.column[term]]
     order = model.order[term]
     first = model.state_offset[term] * boats + boat

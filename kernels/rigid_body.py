@@ -12,8 +12,10 @@ Newton-Euler equations, C_A(nu_r) nu_r = (w x a1, v_r x a1 + w x a2) with (a1, a
 added-mass Coriolis (Munk) term, and tau is the hydrodynamic wrench plus gravity and the external
 wrenches. For a hull type with a hydrodynamic database M_A is its infinite-frequency added mass A_inf, mu
 the radiation memory of Cummins' equation and A_inf a_w the diffraction load of the water's acceleration
-a_w (``kernels.radiation``); without one, mu and a_w are absent and M_A is the type's constant added mass. Semi-implicit Euler: the velocity first, then the pose with the new velocity; the
-orientation turns by the exponential map and is renormalised. The velocity terms c(nu) are taken
+a_w (``kernels.radiation``), all applied in the heading frame, which follows the heading but not the heel and
+trim: M_A = T^T A_inf T and C_A that frame's added-mass terms (``kernels.seakeeping_frame``); without one, mu
+and a_w are absent and M_A is the type's constant added mass, fixed in the body frame. Semi-implicit Euler:
+the velocity first, then the pose with the new velocity; the orientation turns by the exponential map and is renormalised. The velocity terms c(nu) are taken
 linearly implicit at the midpoint, (M + h/2 dc/dnu) dnu = h (tau - c(nu)): an explicit gyroscopic
 term pumps energy into a tumbling body (+1.3 % in 5 s in the Kirchhoff test), a fully implicit one
 drains it (-1.2 %), the midpoint keeps it and stays stable under any damping.
@@ -25,6 +27,7 @@ import warp as wp
 
 from .hull_forces import NO_WAVE_HISTORY
 from .radiation import RadiationModel, diffraction_wrench, radiation_force
+from .seakeeping_frame import from_heading_frame, heading_frame_added_mass, heading_tilt, to_heading_frame
 from .spatial import vec6, wrench
 
 __all__ = [
@@ -42,6 +45,7 @@ __all__ = [
     "damping_force",
     "velocity_terms",
     "velocity_terms_jacobian",
+    "rigid_body_mass_matrix",
     "solve6",
     "integrate_boats",
     "place_boat",
@@ -203,6 +207,20 @@ def velocity_terms_jacobian(
 
 
 @wp.func
+def rigid_body_mass_matrix(mass: float, r_g: wp.vec3, inertia_origin: wp.mat33) -> mat66:
+    """Fossen's M_RB about the body origin: [[m I, -m S(r_g)], [m S(r_g), I_o]]."""
+    s_r = mass * _skew(r_g)
+    out = mat66()
+    for i in range(3):
+        out[i, i] = mass
+        for j in range(3):
+            out[i, j + 3] = -s_r[i, j]
+            out[i + 3, j] = s_r[i, j]
+            out[i + 3, j + 3] = inertia_origin[i, j]
+    return out
+
+
+@wp.func
 def solve6(matrix: mat66, rhs: vec6) -> vec6:
     """x with matrix x = rhs, by Gaussian elimination without pivoting: the matrices solved here are
     M + h dc/dnu, close to the positive definite mass matrix for any sensible step."""
@@ -279,25 +297,36 @@ def integrate_boats(
     force = wp.vec3(external[0], external[1], external[2]) + wp.quat_rotate_inv(rotation, wp.vec3(0.0, 0.0, -mass * gravity))
     moment = wp.vec3(external[3], external[4], external[5]) + wp.cross(r_g, force)
     tau = hydro_wrench[boat] + model_wrench[boat] + wrench(force, moment)
-    seakeeping = radiation.has_database[kind] != 0
-    if seakeeping:
-        tau = (tau - radiation_force(radiation, kind, boat, radiation_output)
-               + diffraction_wrench(radiation, kind, _rotate_wrench_to_body(rotation, wave_acceleration[boat])))
-
     current = water_velocity[boat]
     nu_r = nu - vec6(current[0], current[1], current[2], 0.0, 0.0, 0.0)
+    inertia_origin = body.inertia_origin[kind]
+    added_mass = body.added_mass[kind]
+    mass_matrix = body.mass_matrix[kind]
+    heading_terms = vec6()
+    heading_jacobian = mat66()
+    if radiation.has_database[kind] != 0:
+        # The database's A_inf, memory and diffraction act in the heading frame (kernels.seakeeping_frame).
+        tilt = heading_tilt(rotation)
+        water_acceleration = to_heading_frame(tilt, _rotate_wrench_to_body(rotation, wave_acceleration[boat]))
+        tau = tau + from_heading_frame(tilt, diffraction_wrench(radiation, kind, water_acceleration)
+                                       - radiation_force(radiation, kind, boat, radiation_output))
+        heading = heading_frame_added_mass(tilt, nu_r, radiation.added_mass_infinite[kind])
+        added_mass = mat66()
+        mass_matrix = rigid_body_mass_matrix(mass, r_g, inertia_origin) + heading.mass
+        heading_terms = heading.terms
+        heading_jacobian = heading.jacobian
+
     linear_damping = body.linear_damping[kind]
     quadratic_damping = body.quadratic_damping[kind]
     if nu_r[0] < 0.0:
         astern = body.astern_surge_factor[kind]
         linear_damping[0] = astern * linear_damping[0]
         quadratic_damping[0] = astern * quadratic_damping[0]
-    inertia_origin = body.inertia_origin[kind]
-    added_mass = body.added_mass[kind]
-    terms = velocity_terms(nu, nu_r, mass, r_g, inertia_origin, added_mass, linear_damping, quadratic_damping)
-    jacobian = velocity_terms_jacobian(nu, nu_r, mass, r_g, inertia_origin, added_mass, linear_damping,
-                                       quadratic_damping)
-    new_nu = nu + solve6(body.mass_matrix[kind] + (0.5 * dt) * jacobian, dt * (tau - terms))
+    terms = (velocity_terms(nu, nu_r, mass, r_g, inertia_origin, added_mass, linear_damping, quadratic_damping)
+             + heading_terms)
+    jacobian = (velocity_terms_jacobian(nu, nu_r, mass, r_g, inertia_origin, added_mass, linear_damping,
+                                        quadratic_damping) + heading_jacobian)
+    new_nu = nu + solve6(mass_matrix + (0.5 * dt) * jacobian, dt * (tau - terms))
 
     linear = wp.vec3(new_nu[0], new_nu[1], new_nu[2])
     angular = wp.vec3(new_nu[3], new_nu[4], new_nu[5])

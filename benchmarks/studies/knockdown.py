@@ -10,13 +10,19 @@ about the body z axis is split into its sources (body frame, about the origin, [
   sail, keel, rudder, windage   the rig's parts (the rig's force model run again on a copy of the boat's
                                  state with all but that part's coefficients zeroed)
   hull                          the hull pass: pressure, cross-flow drag, friction, residuary resistance
-  munk                          -(C_A(nu_r) nu_r)_z, the added-mass Coriolis (Munk) moment
+  munk                          -(C_A(nu_r) nu_r)_z, the added-mass Coriolis (Munk) moment; for a hull with a
+                                 database the added-mass velocity terms of the heading frame
+                                 (``kernels.seakeeping_frame``)
   radiation                     -mu_z, the radiation memory (0 for a hull without a database)
   rigid_body                    -(c_RB(nu))_z, the rigid body's own velocity terms
 and the yaw acceleration those imply about z alone (the mass matrix's couplings left out), beside the one
-the trace shows. Reported: the largest yaw rate and
-heel, and the budget at the moment of the largest yaw acceleration toward the wind and averaged over the
-round-up (the first ``--window`` seconds). Written atomically: ``benchmarks/data/knockdown_budget.csv``.
+the trace shows. A heeled boat turns about the vertical, and the mass matrix couples forces into turning, so
+each source's whole wrench (with gravity, the appendages' buoyancy and the diagonal damping beside them) is
+also taken through the mass matrix, M^-1 tau, to the world-vertical angular acceleration it gives
+(``<source>_yaw_accel`` [deg/s^2]); these sum to the observed one but for the integrator's implicit terms.
+Reported: the largest yaw rate and heel, and the budgets at the moment of the largest yaw acceleration toward
+the wind and averaged over the round-up (the first ``--window`` seconds). Written atomically:
+``benchmarks/data/knockdown_budget.csv``.
 """
 
 from __future__ import annotations
@@ -37,6 +43,10 @@ from ocean_warp.kernels.sailing_rig import RigState, sailing_rig
 from ocean_warp.wind import WindConfig
 from benchmarks import DATA
 
+BODY_TERMS = ("sail", "keel", "rudder", "windage", "hull", "munk", "radiation", "rigid_body")
+"""The sources of the body-z budget."""
+WORLD_TERMS = BODY_TERMS + ("gravity", "appendage_buoyancy", "damping")
+"""The sources of the world-yaw acceleration budget (every wrench the equations of motion see in flat water)."""
 PARTS = {"sail": (1.0, 0.0, 0.0), "keel": (0.0, 1.0, 0.0), "rudder": (0.0, 0.0, 1.0), "windage": (0.0, 0.0, 0.0)}
 """Foil factors that leave one part of the rig (windage: none of the foils, so windage and propeller)."""
 
@@ -64,29 +74,68 @@ def rig_part_wrenches(sim: EBoatSimulator) -> dict[str, np.ndarray]:
     return parts
 
 
-def velocity_term_moments(sim: EBoatSimulator) -> dict[str, np.ndarray]:
-    """{"munk", "rigid_body", "radiation"}: (N,) yaw moments [N m] of the velocity terms and the memory."""
+def heading_tilt(orientation: np.ndarray) -> np.ndarray:
+    """R_t = R_z(psi)^T R: body -> heading frame of a body -> world quaternion (x, y, z, w)."""
+    rotation = rotation_matrix(orientation)
+    psi = math.atan2(rotation[1, 0], rotation[0, 0])
+    c, s = math.cos(psi), math.sin(psi)
+    return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]) @ rotation
+
+
+def rotation_matrix(q: np.ndarray) -> np.ndarray:
+    """Body -> world rotation of a quaternion (x, y, z, w)."""
+    x, y, z, w = np.asarray(q, dtype=np.float64) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def heading_frame_terms(tilt: np.ndarray, nu_r: np.ndarray, added: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(T^T A T, c_A): the body-frame added mass and added-mass velocity terms of A applied in the heading frame
+    (``kernels.seakeeping_frame``'s formula, in numpy)."""
+    t = np.kron(np.eye(2), tilt)
+    nu_h = t @ nu_r
+    v, w = nu_h[:3], nu_h[3:]
+    bow = tilt[:, 0]
+    frame_rate = np.array([0.0, 0.0, (-bow[2] / max(bow[0], 0.1)) * w[0] + w[2]])
+    tilt_rate = w - frame_rate
+    a = added @ nu_h
+    terms = added @ np.concatenate([np.cross(tilt_rate, v), np.cross(tilt_rate, w)])
+    terms += np.concatenate([np.cross(frame_rate, a[:3]), np.cross(frame_rate, a[3:]) + np.cross(v, a[:3])])
+    return t.T @ added @ t, t.T @ terms
+
+
+def velocity_term_wrenches(sim: EBoatSimulator) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """({"munk", "rigid_body", "radiation", "damping"}: (6,) body-frame wrenches [N, N m] of boat 0's velocity
+    terms and memory, on the right-hand side), and the mass matrix (6, 6) its acceleration meets."""
     boat_type = sim.fleet.model.boat_types[0]
     state = sim.fleet.numpy()
-    nu = state["velocity"].astype(np.float64)
-    water = sim.fleet.state.water_velocity.numpy().astype(np.float64)
+    nu = state["velocity"][0].astype(np.float64)
     nu_r = nu.copy()
-    nu_r[:, :3] -= water
-    added = boat_type.added_mass
-    a = nu_r @ added.T
-    munk = -(np.cross(nu_r[:, :3], a[:, :3]) + np.cross(nu_r[:, 3:], a[:, 3:]))[:, 2]
+    nu_r[:3] -= sim.fleet.state.water_velocity.numpy()[0].astype(np.float64)
     mass, r_g, inertia = boat_type.mass, boat_type.center_of_mass, boat_type.inertia_about_origin
-    v, w = nu[:, :3], nu[:, 3:]
-    w_cross_v = np.cross(w, v)
-    rigid = -(np.cross(w, w @ inertia.T) + mass * np.cross(r_g, w_cross_v))[:, 2]
-    radiation = np.zeros(len(nu))
     database = boat_type.seakeeping
-    if database is not None:
-        outputs = sim.fleet.state.radiation_output.numpy().reshape(-1, len(nu)).T.astype(np.float64)
+    radiation = np.zeros(6)
+    if database is None:
+        a = boat_type.added_mass @ nu_r
+        munk = -np.concatenate([np.cross(nu_r[3:], a[:3]), np.cross(nu_r[:3], a[:3]) + np.cross(nu_r[3:], a[3:])])
+        mass_matrix = boat_type.mass_matrix
+    else:
+        tilt = heading_tilt(state["orientation"][0])
+        added, terms = heading_frame_terms(tilt, nu_r, np.asarray(database.added_mass_infinite, dtype=np.float64))
+        munk = -terms
+        mass_matrix = boat_type.rigid_body_mass_matrix + added
+        outputs = sim.fleet.state.radiation_output.numpy().astype(np.float64)
         for index, term in enumerate(database.radiation):
-            if term.row == 5:
-                radiation -= outputs[:, index]
-    return {"munk": munk, "rigid_body": rigid, "radiation": radiation}
+            radiation[term.row] -= outputs[index * sim.count]
+        radiation = np.kron(np.eye(2), tilt).T @ radiation
+    v, w = nu[:3], nu[3:]
+    w_cross_v = np.cross(w, v)
+    rigid = -np.concatenate([mass * (w_cross_v + np.cross(w, np.cross(w, r_g))),
+                             np.cross(w, inertia @ w) + mass * np.cross(r_g, w_cross_v)])
+    linear, quadratic = np.asarray(boat_type.linear_damping), np.asarray(boat_type.quadratic_damping)
+    damping = -(linear * nu_r + quadratic * np.abs(nu_r) * nu_r)
+    return {"munk": munk, "rigid_body": rigid, "radiation": radiation, "damping": damping}, mass_matrix
 
 
 def knockdown(wind_speed: float, twa: float, speed: float, sheet: float, duration: float, dt: float,
@@ -97,28 +146,41 @@ def knockdown(wind_speed: float, twa: float, speed: float, sheet: float, duratio
     # The wind blows toward -x; yaw +twa puts it over the starboard bow.
     sim.reset(heading=twa, velocity=[speed, 0, 0, 0, 0, 0], wind_speed=wind_speed, wind_direction=math.pi,
               sheet=sheet)
-    yaw_inertia = sim.fleet.model.boat_types[0].mass_matrix[5, 5]
-    rows, previous_rate = [], 0.0
+    boat_type = sim.fleet.model.boat_types[0]
+    rows, previous_rate, previous_world_rate = [], 0.0, 0.0
     for step in range(int(round(duration / dt))):
         sim.step()
         state = sim.fleet.numpy()
         rate = float(state["velocity"][0, 5])
+        rotation = rotation_matrix(state["orientation"][0])
+        world_rate = float(rotation[2] @ state["velocity"][0, 3:].astype(np.float64))
         roll, _, yaw = roll_pitch_yaw(state["orientation"][:1])[0]
         row = {"time_s": (step + 1) * dt, "heel_deg": math.degrees(roll), "yaw_rate_degps": math.degrees(rate),
-               "twa_deg": math.degrees(yaw), "speed_mps": float(state["velocity"][0, 0])}
-        for name, wrench in rig_part_wrenches(sim).items():
-            row[name] = float(wrench[0, 5])
-        row["hull"] = float(state["hydro_wrench"][0, 5])
-        for name, moment in velocity_term_moments(sim).items():
-            row[name] = float(moment[0])
-        budget = sum(row[k] for k in ("sail", "keel", "rudder", "windage", "hull", "munk", "radiation", "rigid_body"))
-        row["sum"] = budget
-        row["implied_yaw_accel_degps2"] = math.degrees(budget / yaw_inertia)
+               "world_yaw_rate_degps": math.degrees(world_rate), "twa_deg": math.degrees(yaw),
+               "speed_mps": float(state["velocity"][0, 0])}
+        wrenches = {name: wrench[0] for name, wrench in rig_part_wrenches(sim).items()}
+        rig = sum(wrenches.values())
+        wrenches["hull"] = state["hydro_wrench"][0].astype(np.float64)
+        terms, mass_matrix = velocity_term_wrenches(sim)
+        wrenches.update(terms)
+        weight = rotation[2] * (-boat_type.mass * sim.ocean.config.water.gravity)
+        wrenches["gravity"] = np.concatenate([weight, np.cross(boat_type.center_of_mass, weight)])
+        wrenches["appendage_buoyancy"] = sim.fleet.forces.model_wrench.numpy()[0].astype(np.float64) - rig
+        for name in BODY_TERMS:
+            row[name] = float(wrenches[name][5])
+        row["sum"] = sum(row[k] for k in BODY_TERMS)
+        row["implied_yaw_accel_degps2"] = math.degrees(row["sum"] / mass_matrix[5, 5])
         row["observed_yaw_accel_degps2"] = math.degrees((rate - previous_rate) / dt)
-        previous_rate = rate
+        for name in WORLD_TERMS:
+            angular = np.linalg.solve(mass_matrix, wrenches[name])[3:]
+            row[f"{name}_yaw_accel"] = math.degrees(float(rotation[2] @ angular))
+        row["sum_yaw_accel"] = sum(row[f"{k}_yaw_accel"] for k in WORLD_TERMS)
+        row["observed_world_yaw_accel"] = math.degrees((world_rate - previous_world_rate) / dt)
+        previous_rate, previous_world_rate = rate, world_rate
         rows.append(row)
     rates = np.array([r["yaw_rate_degps"] for r in rows])
     summary = {"wind_speed_mps": wind_speed, "max_yaw_rate_degps": float(np.max(np.abs(rates))),
+               "max_world_yaw_rate_degps": float(np.max(np.abs([r["world_yaw_rate_degps"] for r in rows]))),
                "max_heel_deg": float(np.max(np.abs([r["heel_deg"] for r in rows])))}
     return summary, rows
 
@@ -149,14 +211,21 @@ def main(argv=None) -> None:
     # Rounding up turns the bow toward the wind: heading toward 0, against the sign of the true wind angle.
     toward = -math.copysign(1.0, args.twa)
     peak = max(toward_wind, key=lambda r: toward * r["observed_yaw_accel_degps2"])
-    terms = ("sail", "keel", "rudder", "windage", "hull", "munk", "radiation", "rigid_body", "sum")
+    terms = BODY_TERMS + ("sum",)
     print("yaw moments [N m] at the largest yaw acceleration toward the wind (t = "
           f"{peak['time_s']:.2f} s, heel {peak['heel_deg']:.1f} deg, yaw rate {peak['yaw_rate_degps']:.1f} deg/s):")
     print("  " + ", ".join(f"{k} {peak[k]:+.1f}" for k in terms))
     mean = {k: float(np.mean([r[k] for r in toward_wind])) for k in terms}
     print(f"mean over the first {args.window:g} s: " + ", ".join(f"{k} {mean[k]:+.1f}" for k in terms))
     print(f"implied yaw acceleration {peak['implied_yaw_accel_degps2']:+.1f} deg/s^2, observed "
-          f"{peak['observed_yaw_accel_degps2']:+.1f}; wrote {args.out}")
+          f"{peak['observed_yaw_accel_degps2']:+.1f}")
+    world = [f"{k}_yaw_accel" for k in WORLD_TERMS] + ["sum_yaw_accel", "observed_world_yaw_accel"]
+    for start, stop in ((0.0, args.window / 2), (0.0, args.window)):
+        span = [r for r in rows if start < r["time_s"] <= stop]
+        mean = {k: float(np.mean([r[k] for r in span])) for k in world}
+        print(f"world-yaw acceleration through M^-1 [deg/s^2], mean over {start:g}-{stop:g} s: "
+              + ", ".join(f"{k.removesuffix('_yaw_accel')} {mean[k]:+.1f}" for k in world))
+    print(f"wrote {args.out}")
 
 
 if __name__ == "__main__":
