@@ -70,12 +70,17 @@ def main(argv=None) -> None:
     parser.add_argument("--choppiness", type=float, default=0.5, help="of the sea (0: linear Airy waves)")
     parser.add_argument("--hull-triangles", type=int, default=None, metavar="N",
                         help="triangle budget of the hull (default: the full hull, 2 024 triangles)")
+    parser.add_argument("--seakeeping", action=argparse.BooleanOptionalAction, default=None,
+                        help="radiation memory and diffraction from the hull's database (default: the boat's default)")
     parser.add_argument("--json", help="write the results here")
     args = parser.parse_args(argv)
     wp.config.log_level = logging.WARNING
     device = wp.get_device(args.device)
-    triangles = EBoat(EBoatConfig(hull_triangles=args.hull_triangles)).hull.triangle_count
-    print(f"E-Boat step ({SUBSTEPS} substeps), choppiness {args.choppiness}, hull of {triangles} triangles; "
+    options = {} if args.seakeeping is None else {"seakeeping": args.seakeeping}
+    boat = EBoatConfig(hull_triangles=args.hull_triangles, **options)
+    triangles = EBoat(boat).hull.triangle_count
+    print(f"E-Boat step ({SUBSTEPS} substeps), choppiness {args.choppiness}, hull of {triangles} triangles, "
+          f"seakeeping {'on' if boat.seakeeping else 'off'}; "
           f"{device_description(device)}; {datetime.date.today()}")
     print("|  boats | ocean every substep: step [ms] | M boat-substeps/s | ocean once a step: step [ms] | "
           "M boat-substeps/s |")
@@ -83,7 +88,7 @@ def main(argv=None) -> None:
     for boats in args.boats:
         row = {"boats": boats}
         for every, key in ((True, "every"), (False, "once")):
-            sim = build(device, boats, every, args.choppiness, hull_triangles=args.hull_triangles)
+            sim = build(device, boats, every, args.choppiness, boat=boat)
             seconds = time_step(sim)
             assert np.all(np.isfinite(sim.fleet.numpy()["position"])), "the benchmark boats must stay finite"
             row[f"{key}_step_ms"] = seconds * 1e3
@@ -93,7 +98,8 @@ def main(argv=None) -> None:
         print(f"| {boats:6d} | {row['every_step_ms']:10.3f} | {row['every_boat_substeps_per_s'] / 1e6:8.3g} | "
               f"{row['once_step_ms']:10.3f} | {row['once_boat_substeps_per_s'] / 1e6:8.3g} |", flush=True)
     if args.json:
-        write_results_json(args.json, device, choppiness=args.choppiness, hull_triangles=triangles, rows=rows)
+        write_results_json(args.json, device, choppiness=args.choppiness, hull_triangles=triangles,
+                           seakeeping=boat.seakeeping, rows=rows)
 
 
 if __name__ == "__main__":

@@ -54,13 +54,14 @@ def close_hauled_points(polar_csv: str, wind_speeds) -> dict[float, tuple[float,
 
 
 def tack(tws: float, twa: float, sheet: float, *, boats: int, settle: float, after: float, dt: float,
-         device) -> dict:
+         device, seakeeping: bool = False) -> dict:
     """Sail ``boats`` copies (sheets spread +-5 deg) through one tack in ``tws`` [m/s]; the summary row."""
     sheets = np.clip(sheet + np.radians(np.linspace(-5.0, 5.0, boats)), 0.0, math.radians(90.0))
     # The wind comes from +x (blows towards -x): yaw +twa points the bow twa to the left of the wind's source,
     # so the wind comes over the starboard bow (starboard tack); yaw -twa is the port tack.
-    sim = EBoatSimulator(EBoatSimulatorConfig(boat=EBoatConfig(), wind=WindConfig(speed=tws, direction=math.pi), dt=dt),
-                         boats, device=device)
+    config = EBoatSimulatorConfig(boat=EBoatConfig(seakeeping=seakeeping),
+                                  wind=WindConfig(speed=tws, direction=math.pi), dt=dt)
+    sim = EBoatSimulator(config, boats, device=device)
     sim.reset(position=np.column_stack([np.arange(boats) * 30.0, np.zeros(boats), np.zeros(boats)]), heading=twa,
               velocity=[1.0, 0, 0, 0, 0, 0], wind_speed=tws, wind_direction=math.pi, sheet=sheets)
     autopilot = HeadingAutopilot(sim)
@@ -100,11 +101,12 @@ def main(argv=None) -> None:
     parser.add_argument("--after", type=float, default=40.0, help="sailed after the order [s]")
     parser.add_argument("--dt", type=float, default=0.05)
     parser.add_argument("--device", default=None)
+    parser.add_argument("--seakeeping", action="store_true", help="EBoatConfig.seakeeping (the hull's database)")
     parser.add_argument("--out", default=os.path.join(DATA, "tacking.csv"))
     args = parser.parse_args(argv)
     points = close_hauled_points(args.polar, args.wind_speeds)
-    rows = [tack(w, *points[w], boats=args.boats, settle=args.settle, after=args.after, dt=args.dt, device=args.device)
-            for w in args.wind_speeds]
+    rows = [tack(w, *points[w], boats=args.boats, settle=args.settle, after=args.after, dt=args.dt, device=args.device,
+                 seakeeping=args.seakeeping) for w in args.wind_speeds]
     with atomic_output(args.out) as temporary, open(temporary, "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()

@@ -28,7 +28,7 @@ from ocean_warp.cli_support import (
     finite_at_least,
     plural,
 )
-from ocean_warp.eboat import EBoat
+from ocean_warp.eboat import EBoat, EBoatConfig
 from ocean_warp.examples.polar_chart_options import parser as _parser
 from ocean_warp.eboat.polar import PolarResult, speed_polar
 
@@ -87,11 +87,12 @@ def main(argv=None) -> int:
     wp.config.log_level = logging.WARNING
     checked_output_folder(parser, args.out)
     os.makedirs(args.out, exist_ok=True)
-    eboat = EBoat()
+    boat = EBoatConfig(seakeeping=True) if args.seakeeping else EBoatConfig()
+    eboat = EBoat(boat)
     start = time.perf_counter()
     result = speed_polar(wind_speeds=args.wind_speeds, wind_angles_deg=np.arange(0.0, 180.0 + 1e-9, args.angle_step),
                          sheets_deg=np.arange(0.0, 90.0 + 1e-9, args.sheet_step), settle_time=args.settle,
-                         device=device, progress=None)  # a bar where stderr is a terminal
+                         boat=boat, device=device, progress=None)  # a bar where stderr is a terminal
     elapsed = time.perf_counter() - start
     png, table = os.path.join(args.out, "polar.png"), os.path.join(args.out, "polar.csv")
     limit = hull_speed(eboat)

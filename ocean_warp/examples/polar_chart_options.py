@@ -25,4 +25,7 @@ def parser() -> argparse.ArgumentParser:
                         help="sheet search step [deg] (settings 0 to 90)")
     parser.add_argument("--settle", type=float, default=60.0, metavar="SECONDS",
                         help="settling time before the speed is averaged [s]")
+    parser.add_argument("--seakeeping", action="store_true",
+                        help="the hull's radiation memory and diffraction from its hydrodynamic database (off: the "
+                             "boat's default)")
     return parser
