@@ -150,16 +150,20 @@ def main(argv=None) -> None:
     parser.add_argument("--hidden", type=int, nargs="+", default=[128, 128], help="policy MLP widths")
     parser.add_argument("--decisions", type=int, default=10, help="timed decisions per case (median)")
     parser.add_argument("--interfaces", nargs="+", default=["core", "rsl_rl", "gymnasium", "sb3"])
+    parser.add_argument("--seakeeping", action="store_true",
+                        help="the boat with its hull's radiation memory and diffraction (EBoatConfig.seakeeping)")
     parser.add_argument("--json", help="write the results here")
     args = parser.parse_args(argv)
     wp.config.log_level = logging.WARNING
     device = wp.get_device(args.device)
     task = WaypointPlusConfig()
     ocean = dataclasses.replace(task.simulator.ocean, choppiness=args.choppiness)
-    simulator = dataclasses.replace(task.simulator, ocean=ocean, dt=args.dt, substeps=args.substeps)
+    boat = dataclasses.replace(task.simulator.boat, seakeeping=True) if args.seakeeping else task.simulator.boat
+    simulator = dataclasses.replace(task.simulator, ocean=ocean, dt=args.dt, substeps=args.substeps, boat=boat)
     task = dataclasses.replace(task, simulator=simulator, decision_period=args.decision_period)
     print(f"Waypoint+ decisions: period {task.decision_period} s = {task.steps_per_decision} steps of dt {args.dt} s "
-          f"x {args.substeps} substeps; mesh hull; JONSWAP Hs {ocean.significant_wave_height} m, Tp {ocean.peak_period} s, "
+          f"x {args.substeps} substeps; mesh hull, seakeeping {'on' if boat.seakeeping else 'off'}; "
+          f"JONSWAP Hs {ocean.significant_wave_height} m, Tp {ocean.peak_period} s, "
           f"choppiness {ocean.choppiness}; policy MLP {args.hidden}; {device_description(device)}; "
           f"{datetime.date.today()}")
     columns = ["physics", "env"] + [{"core": "core+policy"}.get(i, i) for i in args.interfaces]
