@@ -196,6 +196,7 @@ def main(argv=None) -> None:
     parser.add_argument("--check-steepness", type=float, default=1.0 / 120.0, help="a second steepness; 0: none")
     parser.add_argument("--settle", type=float, default=15.0, help="wave periods before the fit (at least 10 s)")
     parser.add_argument("--periods", type=float, default=10.0, help="wave periods fitted")
+    parser.add_argument("--no-decays", action="store_true", help="skip the free decays (natural periods)")
     parser.add_argument("--device", default="cpu")
     parser.add_argument("--out", default=os.path.join(DATA, "seakeeping_raos.csv"))
     parser.add_argument("--figure", default=os.path.join(FIGURES, "seakeeping_raos.png"))
@@ -218,13 +219,14 @@ def main(argv=None) -> None:
                 rows.append(row)
                 print(", ".join(f"{k} {v:.4g}" if isinstance(v, float) else f"{k} {v}" for k, v in row.items()),
                       flush=True)
-    for motion in ("heave", "pitch", "roll"):
+    for motion in () if args.no_decays else ("heave", "pitch", "roll"):
         period, _ = free_decay(motion, args.device, foils=False)
         print(f"natural period of {motion}: free decay {period:.3f} s, capytaine {reference_periods[motion]:.3f} s")
-    period, roll = free_decay("roll", args.device, foils=True, duration=20.0)
-    peaks = np.degrees(np.abs(roll))
-    print(f"roll decay from 10 deg with keel and rudder: period {period:.3f} s, |roll| after 2/5/10 s "
-          f"{peaks[199]:.2f}/{peaks[499]:.2f}/{peaks[999]:.2f} deg")
+    if not args.no_decays:
+        period, roll = free_decay("roll", args.device, foils=True, duration=20.0)
+        peaks = np.degrees(np.abs(roll))
+        print(f"roll decay from 10 deg with keel and rudder: period {period:.3f} s, |roll| after 2/5/10 s "
+              f"{peaks[199]:.2f}/{peaks[499]:.2f}/{peaks[999]:.2f} deg")
     with atomic_output(args.out) as temporary, open(temporary, "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
