@@ -4,12 +4,13 @@ Held still in a regular wave, a hull in the simulator feels the Froude-Krylov pr
 (:mod:`ocean_warp.seakeeping.panel_pressure`) and the diffraction load of the relative-motion form: the effective
 water velocity V = W s of its wave points (:mod:`ocean_warp.seakeeping.wave_points`) loads it through A_inf dV/dt
 and the radiation memory driven by -V, in the frequency domain Z(w) V with Z = i w A_inf + K(i w), K the fitted
-kernels. The weights W (6 x 33 x 4, constant over frequency) are the regularised least squares that make
-FK_panels + Z W s match the BEM's excitation (its Froude-Krylov plus diffraction forces) over the frequencies the
-panels resolve and the headings all round, each residual relative to the excitation it corrects (at least 5 % of
-that degree of freedom's largest over the headings at that frequency: where the ends of the hull cancel each
-other's loads, or symmetry leaves none), so that short waves count as much as long ones. A uniform flow gives V its velocity exactly, and a uniform pressure head nothing (a
-current neither turns nor lifts the hull; long waves see the rigid-motion limit).
+kernels. The weights W (6 x 33 x 4, constant over frequency) are the regularised least squares that make FK_panels
++ Z W s match the BEM's excitation (its Froude-Krylov plus diffraction forces) over the frequencies the panels
+resolve and the headings all round, each residual relative to the excitation it corrects (at least 5 % of that
+degree of freedom's largest over the headings at that frequency: where the ends of the hull cancel each other's
+loads, or symmetry leaves none), so that short waves count as much as long ones. A uniform flow gives V its
+velocity exactly, and a uniform pressure head nothing (a current neither turns nor lifts the hull; long waves see
+the rigid-motion limit).
 
 The rigid-motion fit of the velocities (:func:`ocean_warp.seakeeping.wave_points.rigid_motion_weights`, the
 long-wave approximation) is one W among those this searches: on the E-Boat it leaves the excitation off by up to

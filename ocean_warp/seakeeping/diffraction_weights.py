@@ -76,8 +76,8 @@ class DiffractionWeights:
         depths = self.pressure_depths
         if depths and (len(depths) != 3 or not all(map(math.isfinite, depths))
                        or depths[1:] != (self.velocity_depth, self.pressure_depth)):
-            return (f"pressure_depths must be three finite depths whose last two are velocity_depth and pressure_depth, "
-                    f"got {self.pressure_depths!r}")
+            return ("pressure_depths must be three finite depths whose last two are velocity_depth and "
+                    f"pressure_depth, got {self.pressure_depths!r}")
         return None
 
     def effective_velocity(self, inputs) -> np.ndarray:
