@@ -20,14 +20,16 @@ from typing import Any
 import warp as wp
 
 from .ocean_surface import (
+    FIELD_PRESSURE_LOWER,
+    FIELD_VELOCITY_BELOW,
     LocalInversion,
     OceanSurface,
     local_inversion,
     undisplaced_position_local,
     height_velocity_at_grid,
+    periodic_bilinear,
     surface_height_velocity,
     undisplaced_position_near,
-    velocity_at_depth,
     pressure_head,
 )
 from .spatial import vec6, wrench, wrench_at
@@ -92,14 +94,14 @@ class HullMeshes:
     """The same layout: its increase at 20 deg of heel (scaled by 6 phi^1.7)."""
     wave_points: wp.array(dtype=wp.vec2)
     """WAVE_POINTS per hull type: where the water's motion under the hull is sampled, body frame x, y [m] of a
-    grid over the hull's plan, from the grid's centre (see :func:`water_motion_under_hull`)."""
-    wave_point_center: wp.array(dtype=wp.vec3)
-    """Per hull type: the grid's centre, body frame [m] (z 0)."""
+    grid over the hull's plan (``ocean_warp.seakeeping.wave_points``)."""
+    wave_point_weights: wp.array(dtype=vec6)
+    """WAVE_POINTS x WAVE_POINT_INPUTS per hull type, point-major: the weights (one per DOF) of each point's u, v,
+    w [m/s] at the ocean's middle depth and dynamic pressure head [m] at its deepest in the effective water
+    velocity (see :func:`water_motion_under_hull`)."""
     seakeeping: wp.array(dtype=int)
     """Per hull type: 1 where it has a hydrodynamic database, whose radiation and diffraction need the water's
     motion under the hull (the wave points are sampled only then)."""
-    wave_point_spread: wp.array(dtype=wp.vec2)
-    """Per hull type: (sum x^2, sum y^2) over its wave points [m^2]."""
 
 
 @wp.struct
@@ -437,33 +439,39 @@ NO_WAVE_HISTORY = wp.constant(3.0e38)
 """Marks a boat whose water motion of the last substep is not known (fresh or reset): no acceleration yet."""
 WAVE_POINTS = wp.constant(33)
 """Points per hull type where the water's motion under the hull is sampled: 11 along by 3 across."""
-wave_moments = wp.types.vector(length=9, dtype=wp.float32)
-"""Sums over the wave points of the water velocity v, x v and y v (body frame): what the block reduces."""
+WAVE_POINT_INPUTS = wp.constant(4)
+"""What a wave point reads: u, v, w at the middle depth and the dynamic pressure head at the deepest."""
+wave_moments = vec6
+"""The effective water velocity V (body frame, about the origin [m/s, rad/s]): the weighted sum over the wave
+points that the block reduces."""
 
 
 @wp.func
 def wave_point_moments(surface: OceanSurface, meshes: HullMeshes, kind: int, point: int, origin: wp.vec3,
                        rotation: wp.quat, origin_shift: wp.vec2, currents: CurrentField, boat: int) -> wave_moments:
-    """(v, x v, y v) of one wave point: the water's velocity at the ocean's middle depth under it, orbital plus
-    current, body frame [m/s], times its offsets x, y [m] from the grid's centre."""
+    """One wave point's share of V: its weights times the water's velocity at the ocean's middle depth under it
+    (orbital plus current, body frame [m/s]) and the dynamic pressure head at the deepest [m] (one lookup of the
+    two fields holds both)."""
     r = meshes.wave_points[kind * WAVE_POINTS + point]
-    offset = wp.quat_rotate(rotation, meshes.wave_point_center[kind] + wp.vec3(r[0], r[1], 0.0))
+    offset = wp.quat_rotate(rotation, wp.vec3(r[0], r[1], 0.0))
     q = undisplaced_position_near(surface, wp.vec2(origin[0] + offset[0], origin[1] + offset[1]), origin_shift)
     depth = surface.pressure_depths[1]
-    v = wp.quat_rotate_inv(rotation, velocity_at_depth(surface, q) + current_at(currents, boat, depth))
-    x = r[0]
-    y = r[1]
-    return wave_moments(v[0], v[1], v[2], x * v[0], x * v[1], x * v[2], y * v[0], y * v[1], y * v[2])
+    lower = periodic_bilinear(surface, FIELD_PRESSURE_LOWER, q)
+    below = periodic_bilinear(surface, FIELD_VELOCITY_BELOW, q)
+    orbital = wp.vec3(below[0], below[1], lower[1])
+    v = wp.quat_rotate_inv(rotation, orbital + current_at(currents, boat, depth))
+    first = (kind * WAVE_POINTS + point) * WAVE_POINT_INPUTS
+    return (v[0] * meshes.wave_point_weights[first] + v[1] * meshes.wave_point_weights[first + 1]
+            + v[2] * meshes.wave_point_weights[first + 2] + lower[0] * meshes.wave_point_weights[first + 3])
 
 
-wrench_and_moments = wp.types.vector(length=15, dtype=wp.float32)
-"""A wrench (6) and the wave moments (9), reduced over a block in one pass."""
+wrench_and_moments = wp.types.vector(length=12, dtype=wp.float32)
+"""A wrench (6) and the effective water velocity (6), reduced over a block in one pass."""
 
 
 @wp.func
 def _wrench_and_moments(w: vec6, m: wave_moments) -> wrench_and_moments:
-    return wrench_and_moments(w[0], w[1], w[2], w[3], w[4], w[5], m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7],
-                              m[8])
+    return wrench_and_moments(w[0], w[1], w[2], w[3], w[4], w[5], m[0], m[1], m[2], m[3], m[4], m[5])
 
 
 @wp.func
@@ -473,35 +481,24 @@ def _wrench_part(both: wrench_and_moments) -> vec6:
 
 @wp.func
 def _moments_part(both: wrench_and_moments) -> wave_moments:
-    return wave_moments(both[6], both[7], both[8], both[9], both[10], both[11], both[12], both[13], both[14])
+    return wave_moments(both[6], both[7], both[8], both[9], both[10], both[11])
 
 
 @wp.func
 def water_motion_under_hull(meshes: HullMeshes, kind: int, sums: wave_moments, rotation: wp.quat) -> vec6:
-    """The rigid motion that fits the water's velocity over the hull's wave points, in least squares: the
-    velocity of the water the body origin is in [m/s] and its angular velocity [rad/s], WORLD frame. Over a
-    waterplane grid (x, y about its centre), v_z = w + p y - q x, v_x = u - r y, v_y = v + r x give
-    w = mean v_z, p = sum(y v_z) / sum(y^2), q = -sum(x v_z) / sum(x^2), r = (sum(x v_y) - sum(y v_x)) /
-    (sum x^2 + sum y^2); the velocity at the origin adds the angular part's at the grid's centre's offset. Waves
-    shorter than the hull average out over it, as they do in the forces they exert."""
-    spread = meshes.wave_point_spread[kind]
-    count = float(WAVE_POINTS)
-    mean = wp.vec3(sums[0], sums[1], sums[2]) / count
-    p = sums[8] / spread[1]
-    q = -sums[5] / spread[0]
-    r = (sums[4] - sums[6]) / (spread[0] + spread[1])
-    angular = wp.vec3(p, q, r)
-    at_origin = mean - wp.cross(angular, meshes.wave_point_center[kind])
-    world_linear = wp.quat_rotate(rotation, at_origin)
-    world_angular = wp.quat_rotate(rotation, angular)
-    return vec6(world_linear[0], world_linear[1], world_linear[2], world_angular[0], world_angular[1],
-                world_angular[2])
+    """The effective water velocity V reduced over the wave points (body frame, about the origin) in the WORLD
+    frame: linear [m/s] and angular [rad/s] parts rotated. Its weights are the type's database's, fitted so that
+    A_inf dV/dt and the radiation memory of the relative velocity give the BEM's diffraction load
+    (``ocean_warp.seakeeping.diffraction_fit``), or the least-squares rigid motion of the velocities."""
+    linear = wp.quat_rotate(rotation, wp.vec3(sums[0], sums[1], sums[2]))
+    angular = wp.quat_rotate(rotation, wp.vec3(sums[3], sums[4], sums[5]))
+    return vec6(linear[0], linear[1], linear[2], angular[0], angular[1], angular[2])
 
 
 @wp.func
 def wave_motion_update(motion: vec6, substep: float, boat: int, wave_velocity: wp.array(dtype=vec6),
                        wave_acceleration: wp.array(dtype=vec6)):
-    """Keep the water's rigid motion under the hull (world frame [m/s, rad/s]) and its rate of change along the
+    """Keep the water's effective velocity under the hull (world frame [m/s, rad/s]) and its rate of change along the
     boat's path since the last substep [m/s^2, rad/s^2] (0 without a last one)."""
     before = wave_velocity[boat]
     acceleration = vec6()

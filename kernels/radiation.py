@@ -5,12 +5,13 @@ its retardation kernels, mu(t) = int K(t - s) nu_r(s) ds (Cummins 1962). A hull'
 (``ocean_warp.seakeeping``) replaces each significant kernel K_ij by a small state-space model,
 dx/dt = A x + B nu_r[j], mu_i += C x; here each model advances by its exact zero-order-hold step,
 x <- Phi x + Gamma nu_r[j] (Phi = e^{A h}, Gamma = int_0^h e^{A s} ds B, computed once on the host for the
-substep h). The velocity that drives them is the hull's relative to the water's orbital motion at the
-ocean's middle depth, fitted as a rigid motion over a grid of points under the hull
-(``kernels.hull_forces.water_motion_under_hull``: the relative-motion form, in which a hull that moves with
-the water radiates nothing), and the acceleration of that motion loads the hull through the infinite-frequency
-added mass (the diffraction correction of relative-motion strip theory: waves short against the hull average
-out over the grid, as they do in the Froude-Krylov pressure).
+substep h). The velocity that drives them is the hull's relative to the water's effective velocity V under
+it (``kernels.hull_forces.water_motion_under_hull``: the relative-motion form, in which a hull that moves with
+the water radiates nothing), and the rate of change of V loads the hull through the infinite-frequency added
+mass: the diffraction load. V is a weighted sum of what a grid of points under the hull reads of the ocean
+(velocities at its middle depth, pressure heads at its deepest), the weights the database's, fitted so that
+this load and the panels' Froude-Krylov pressure give the BEM's wave excitation at every heading
+(``ocean_warp.seakeeping.diffraction_fit``); without them, the rigid motion that fits the velocities.
 
 Layout: the terms of hull type t are ``first_term[t]`` .. ``first_term[t + 1] - 1``; term e couples DOF
 ``column[e]`` into DOF ``row[e]`` (0..5: surge, sway, heave, roll, pitch, yaw) through ``order[e]`` states
@@ -128,8 +129,8 @@ def advance_radiation_terms(
 
 @wp.func
 def diffraction_wrench(model: RadiationModel, kind: int, water_acceleration: vec6) -> vec6:
-    """A_inf times the acceleration of the water's rigid motion under the hull (body frame [m/s^2, rad/s^2],
-    about the origin) as a wrench [N, N m] about the origin."""
+    """A_inf times the rate of change of the water's effective velocity under the hull (body frame [m/s^2,
+    rad/s^2], about the origin) as a wrench [N, N m] about the origin."""
     return model.added_mass_infinite[kind] * water_acceleration
 
 

@@ -14,6 +14,7 @@ from .kernels.hull_forces import MAX_HULL_VERTICES, NO_SWEPT_RATE, NO_WAVE_HISTO
 from .kernels.radiation import reset_radiation_masked
 from .radiation import radiation_states_per_boat, radiation_terms_per_boat
 from .resistance import FROUDE_SAMPLES
+from .seakeeping.wave_points import WAVE_POINT_INPUTS, rigid_motion_weights, wave_point_grid
 from .kernels.rigid_body import (
     STATUS_BAD_INPUT,
     STATUS_CAPSIZED,
@@ -134,10 +135,10 @@ class FleetState:
     swept_rate: wp.array
     """(total triangles,) float: each hull triangle's last swept rate A_sub |v| for slamming [m^3/s]."""
     wave_velocity: wp.array
-    """(N,) vec6: the rigid motion that fits the water's velocity at the ocean's middle pressure depth under each
-    hull, orbital plus current: the velocity of the water at the body origin [m/s] and its angular velocity
-    [rad/s], world frame (computed by the hull pass, ``kernels.hull_forces.water_motion_under_hull``; first
-    component ``NO_WAVE_HISTORY`` after a reset)."""
+    """(N,) vec6: the effective velocity of the water under each hull (orbital plus current, weighted over its wave
+    points: ``ocean_warp.seakeeping.wave_points``), linear [m/s] and angular [rad/s], world frame (computed by the
+    hull pass, ``kernels.hull_forces.water_motion_under_hull``; first component ``NO_WAVE_HISTORY`` after a
+    reset)."""
     wave_acceleration: wp.array
     """(N,) vec6: its rate of change along the boat's path over the last substep, world frame [m/s^2, rad/s^2]."""
     radiation_state: wp.array
@@ -342,29 +343,24 @@ def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:
     meshes.surface_area = wp.array([h.surface_area for h in hulls], dtype=float, device=device)
     meshes.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
     _add_residuary_tables(meshes, boat_types, device)
-    _add_wave_points(meshes, hulls, device)
+    _add_wave_points(meshes, boat_types, device)
     meshes.seakeeping = wp.array([int(t.seakeeping is not None) for t in boat_types], dtype=int, device=device)
     return meshes
 
 
-def _add_wave_points(meshes: HullMeshes, hulls, device) -> None:
-    """Each hull's grid of wave points: 11 along by 3 across its plan (x at 0.05 to 0.95 of its length, y at
-    0.25 to 0.75 of its breadth), about the plan's centre: a wave as short as 0.4 of the hull still has four
-    points a wavelength, so it averages out rather than aliasing."""
-    along = np.linspace(-0.45, 0.45, 11)
-    across = np.array([-0.25, 0.0, 0.25])
-    points, centers, spreads = [], [], []
-    for hull in hulls:
-        low, high = hull.bounds
-        length, breadth = high[0] - low[0], high[1] - low[1]
-        grid = np.array([(x * length, y * breadth) for x in along for y in across])
-        assert len(grid) == WAVE_POINTS
+def _add_wave_points(meshes: HullMeshes, boat_types: list[BoatType], device) -> None:
+    """Each type's wave points and their weights (``ocean_warp.seakeeping.wave_points``): its database's diffraction
+    weights, else the rigid-motion fit of the velocities over its grid."""
+    points, weights = [], []
+    for boat_type in boat_types:
+        fitted = getattr(getattr(boat_type, "seakeeping", None), "diffraction", None)
+        grid = fitted.points if fitted is not None else wave_point_grid(boat_type.hull)
+        assert len(grid) == WAVE_POINTS and WAVE_POINT_INPUTS == 4
         points.append(grid)
-        centers.append((0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), 0.0))
-        spreads.append(((grid[:, 0] ** 2).sum(), (grid[:, 1] ** 2).sum()))
+        chosen = fitted.weights if fitted is not None else rigid_motion_weights(grid)
+        weights.append(np.transpose(chosen, (1, 2, 0)).reshape(-1, 6))  # point-major, a vec6 per input
     meshes.wave_points = wp.array(np.concatenate(points).astype(np.float32), dtype=wp.vec2, device=device)
-    meshes.wave_point_center = wp.array(np.array(centers, dtype=np.float32), dtype=wp.vec3, device=device)
-    meshes.wave_point_spread = wp.array(np.array(spreads, dtype=np.float32), dtype=wp.vec2, device=device)
+    meshes.wave_point_weights = wp.array(np.concatenate(weights).astype(np.float32), dtype=vec6, device=device)
 
 
 def _add_residuary_tables(meshes: HullMeshes, boat_types: list[BoatType], device) -> None:

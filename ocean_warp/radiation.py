@@ -8,7 +8,8 @@ import warp as wp
 
 from .kernels.radiation import MAX_TERM_ORDER, RadiationModel
 
-__all__ = ["radiation_states_per_boat", "radiation_terms_per_boat", "radiation_model", "zero_order_hold"]
+__all__ = ["radiation_states_per_boat", "radiation_terms_per_boat", "radiation_model", "zero_order_hold",
+           "check_wave_point_depths"]
 
 
 def _terms(boat_type) -> tuple:
@@ -94,3 +95,18 @@ def radiation_model(boat_types, substep: float, device) -> RadiationModel:
     model.states_per_boat = radiation_states_per_boat(boat_types)
     model.max_terms = radiation_terms_per_boat(boat_types)
     return model
+
+
+def check_wave_point_depths(boat_types, pressure_depths) -> None:
+    """``ValueError`` (one line) where a type's diffraction weights were fitted for other ocean pressure depths than
+    ``pressure_depths`` (3,) [m, positive down], the ones its wave points will read."""
+    depths = tuple(float(v) for v in pressure_depths)
+    for boat_type in boat_types:
+        fitted = getattr(getattr(boat_type, "seakeeping", None), "diffraction", None)
+        if fitted is None:
+            continue
+        assumed = fitted.pressure_depths or (depths[0], fitted.velocity_depth, fitted.pressure_depth)
+        if not np.allclose(assumed, depths, rtol=0.0, atol=1e-6):
+            raise ValueError(f"boat type {boat_type.name!r}: its hydrodynamic database's diffraction weights were "
+                             f"fitted for ocean pressure depths {list(assumed)} m, the ocean has {list(depths)} m "
+                             "(OceanConfig.pressure_depths): recompute the database or use those depths")

@@ -15,7 +15,7 @@ from .kernels.hull_forces import WaterModel, hull_wrenches_kernel, sample_origin
 from .kernels.rigid_body import SafetyBounds, advance_time, integrate_boats
 from .ocean import Ocean
 from .kernels.radiation import advance_radiation_terms
-from .radiation import radiation_model
+from .radiation import check_wave_point_depths, radiation_model
 from .replay import ReplayedLaunches
 from .torch_streams import ordered_with_torch
 from .validation import require_in_range, require_int_in_range, require_positive
@@ -104,6 +104,7 @@ class Simulator:
         vertex_rounds = -(-fleet.model.max_vertex_count // self.block_dim)
         self.water = _water_model(self.config.hydrodynamics, ocean.config.water, self.config.substep_dt)
         """The hull pass's view of the hull model and of the ocean's water (its density, gravity, viscosity)."""
+        check_wave_point_depths(fleet.model.boat_types, ocean.config.pressure_depths)
         self.radiation = radiation_model(fleet.model.boat_types, self.config.substep_dt, self.device)
         """The fleet's radiation models discretised for the substep (``ocean_warp.kernels.radiation``)."""
         if current is not None:

@@ -10,7 +10,9 @@ frequencies. At zero speed in deep water, capytaine solves at each frequency (by
 problems of head seas (heading 180 deg, the waves travelling toward -x) and beam seas (90 deg, travelling toward
 +y); then at infinite frequency the radiation problems again, for A_inf. The radiation kernels are fitted by
 state-space blocks (:mod:`ocean_warp.seakeeping.radiation_fit`) over the frequencies that the panels resolve
-(a panel no larger than an eighth of the wavelength), and the whole is a :class:`HydroDatabase`.
+(a panel no larger than an eighth of the wavelength), and so are the diffraction weights of the hull's wave points
+(:mod:`ocean_warp.seakeeping.diffraction_fit`), to the excitation of waves from every 15 deg; the whole is a
+:class:`HydroDatabase`.
 
 capytaine is an optional dependency (``pip install -e '.[bem]'``), imported only when a run starts. Its solver
 uses every core it is given (OMP_NUM_THREADS); a hull of about 1 000 panels (and a lid of about 350) at the 50
@@ -31,13 +33,19 @@ import numpy as np
 from ..hull import Hull
 from ..hull_form import displaced_volume
 from .database import HydroDatabase, RadiationTerm, hull_fingerprint
+from .diffraction_fit import FIT_HEADINGS_DEG, fit_diffraction_weights
+from .panel_pressure import panel_froude_krylov
 from .radiation_fit import RadiationFit, fit_radiation
+from .wave_points import wave_point_grid
 
 __all__ = ["BemResult", "DEFAULT_FREQUENCY_RANGE", "INSTALL_HINT", "default_frequencies", "rest_height_for_mass",
            "check_rest_height", "compute_database", "require_capytaine"]
 
 DEFAULT_FREQUENCY_RANGE = (0.3, 30.0, 50)
 """Lowest and highest frequency [rad/s] and how many, log-spaced."""
+DEFAULT_PRESSURE_DEPTHS = (0.05, 0.15, 0.35)
+"""The ocean's pressure depths [m] (``OceanConfig.pressure_depths``' default) the diffraction weights are fitted
+for: the wave points read velocities at the middle one and pressure heads at the deepest."""
 DEFAULT_HEADINGS_DEG = (180.0, 90.0)
 """Wave headings of the excitation forces [deg]: head seas and beam seas."""
 MIN_DRAFT_FRACTION = 0.01
@@ -186,9 +194,23 @@ def _excitation(cpt, solver, body, omega: float, headings: np.ndarray, density: 
     return forces
 
 
+def _diffraction_weights(hull: Hull, database: HydroDatabase, excitation: np.ndarray, headings: np.ndarray,
+                         chosen: np.ndarray, pressure_depths):
+    """The wave points' weights fitted to ``excitation`` (F, H, 6) at the database's ``chosen`` frequencies."""
+    w = database.frequencies[chosen]
+    vertices = np.asarray(hull.vertices, dtype=np.float64) + np.array([0.0, 0.0, database.rest_height])
+    froude_krylov = np.array([panel_froude_krylov(vertices, hull.triangles, omega, headings, pressure_depths,
+                                                  density=database.water_density, gravity=database.gravity)
+                              for omega in w])
+    impedance = 1j * w[:, None, None] * database.added_mass_infinite[None] + database.radiation_force_response(w)
+    return fit_diffraction_weights(wave_point_grid(hull), w, impedance, excitation[chosen], froude_krylov, headings,
+                                   pressure_depths=pressure_depths, gravity=database.gravity)
+
+
 def compute_database(hull: Hull, *, rest_height: float | None = None, mass: float | None = None,
                      frequencies=None, water_density: float = 1025.0, gravity: float = 9.81, lid: bool = True,
-                     headings_deg=DEFAULT_HEADINGS_DEG, progress: bool | None = None) -> BemResult:
+                     headings_deg=DEFAULT_HEADINGS_DEG, diffraction: bool = True,
+                     pressure_depths=DEFAULT_PRESSURE_DEPTHS, progress: bool | None = None) -> BemResult:
     """Run the BEM on ``hull`` (see the module's docstring) and fit its radiation memory.
 
     Args:
@@ -198,6 +220,9 @@ def compute_database(hull: Hull, *, rest_height: float | None = None, mass: floa
         water_density, gravity: rho [kg/m^3] and g [m/s^2].
         lid: put a lid on the inner waterplane against irregular frequencies.
         headings_deg: wave headings of the excitation forces [deg] (may be empty).
+        diffraction: fit the diffraction weights of the wave points (waves from every 15 deg, more solves of the
+            diffraction problem); False: none (the simulator falls back to the rigid-motion fit).
+        pressure_depths: the ocean's three pressure depths [m] the simulator will run with.
         progress: a progress bar on stderr; None: where stderr is a terminal.
     """
     for name, value in (("water_density", water_density), ("gravity", gravity)):
@@ -219,6 +244,8 @@ def compute_database(hull: Hull, *, rest_height: float | None = None, mass: floa
         solver = cpt.BEMSolver()
         added, damping = np.zeros((len(w), 6, 6)), np.zeros((len(w), 6, 6))
         excitation = np.zeros((len(w), len(headings), 6), dtype=np.complex128)
+        fit_headings = np.radians(FIT_HEADINGS_DEG) if diffraction else np.zeros(0)
+        all_round = np.zeros((len(w), len(fit_headings), 6), dtype=np.complex128)
         steps = tqdm(range(len(w) + 1), desc="bem", unit="frequency", file=sys.stderr, dynamic_ncols=True,
                      disable=None if progress is None else not progress)
         for k in steps:
@@ -228,11 +255,14 @@ def compute_database(hull: Hull, *, rest_height: float | None = None, mass: floa
             added[k], damping[k] = _radiation_matrices(cpt, solver, body, float(w[k]), water_density, gravity)
             if len(headings):
                 excitation[k] = _excitation(cpt, solver, body, float(w[k]), headings, water_density, gravity)
+            if len(fit_headings):
+                all_round[k] = _excitation(cpt, solver, body, float(w[k]), fit_headings, water_density, gravity)
         radius = float(body.mesh_including_lid.faces_radiuses.max())
         hull_panels = int(body.mesh.nb_faces)
         lid_panels = 0 if body.lid_mesh is None else int(body.lid_mesh.nb_faces)
     for name, array in (("added mass", added), ("damping", damping), ("infinite-frequency added mass",
-                                                                        added_infinite), ("excitation", excitation)):
+                                                                        added_infinite), ("excitation", excitation),
+                        ("excitation all round", all_round)):
         if not np.all(np.isfinite(array)):
             raise RuntimeError(f"capytaine returned NaN or infinite {name} for hull {hull.name!r}")
     # The wavelength 2 pi g / w^2 is resolved while it is at least eight panel radii; the fits take those
@@ -258,5 +288,9 @@ def compute_database(hull: Hull, *, rest_height: float | None = None, mass: floa
                              frequencies=w, added_mass=added, damping=damping, added_mass_infinite=added_infinite,
                              radiation=terms, excitation_headings=headings if len(headings) else None,
                              excitation=excitation if len(headings) else None, provenance=provenance)
+    if diffraction:
+        weights = _diffraction_weights(hull, database, all_round, fit_headings, w <= band_high, pressure_depths)
+        provenance["diffraction_fit_error"] = float(f"{weights.fit_error:.3g}")
+        database = dataclasses.replace(database, diffraction=weights, provenance=provenance)
     return BemResult(database=database, fit=fit, hull_panels=hull_panels, lid_panels=lid_panels,
                      resolved_frequency=resolved, wall_time=elapsed)

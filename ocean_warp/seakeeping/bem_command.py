@@ -9,7 +9,8 @@ The hull floats upright, its body origin at the rest height above still water (g
 displace). Its mesh is cut at the free surface, a lid on the inner waterplane removes the irregular
 frequencies, and at each frequency (by default 50, log-spaced from 0.3 to 30 rad/s) capytaine solves the six
 radiation problems of the rigid body about the body origin, at zero speed in deep water, and the diffraction
-problems of the --headings (head and beam seas); then the radiation problems at infinite frequency. The
+problems of the --headings (head and beam seas) and of waves from every 15 deg (for the diffraction weights of
+the wave points, ocean_warp.seakeeping.diffraction_fit); then the radiation problems at infinite frequency. The
 radiation kernels K(jw) = B(w) + jw (A(w) - A_inf) that matter are fitted by stable state-space models of
 order 2 to 6 over the frequencies the panels resolve (Perez and Fossen's frequency-domain identification).
 
@@ -96,6 +97,9 @@ def _summary(result, hull, mass: float) -> list[str]:
     lines.append(f"state-space fits over {result.fit.band[0]:g}-{result.fit.band[1]:.3g} rad/s (the panels resolve "
                  f"waves up to {result.resolved_frequency:.3g} rad/s):")
     lines.append(result.fit.describe())
+    if db.diffraction is not None:
+        lines.append(f"diffraction weights of {db.diffraction.points.shape[0]} wave points: RMS relative error of the "
+                     f"excitation (heave, roll, pitch, waves from every 15 deg) {100 * db.diffraction.fit_error:.1f} %")
     return lines
 
 

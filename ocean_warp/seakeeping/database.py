@@ -1,5 +1,6 @@
 """A hull's hydrodynamic database: potential-flow added mass and damping over frequency, the infinite-frequency
-added mass, state-space fits of the radiation memory, and optionally the wave excitation; as a small JSON file.
+added mass, state-space fits of the radiation memory, and optionally the wave excitation and the diffraction
+weights of the wave points; as a small JSON file.
 
 Every matrix is about the body origin (the point (0, 0, 0) of the hull mesh, which floats ``rest_height`` above
 still water, upright) in body axes (FLU: x to the bow, y to port, z up), degrees of freedom in the order surge,
@@ -23,12 +24,13 @@ import warnings
 import numpy as np
 
 from ..atomic_files import atomic_output
+from .diffraction_weights import DiffractionWeights
 
 __all__ = ["FORMAT_VERSION", "RadiationTerm", "HydroDatabase", "hull_fingerprint", "database_for",
            "NoHydroDatabaseWarning"]
 
-FORMAT_VERSION = 1
-"""The version of the file format this module writes and reads."""
+FORMAT_VERSION = 2
+"""The version of the file format this module writes and reads (2: the diffraction weights)."""
 FORMAT_NAME = "ocean_warp hydrodynamic database"
 MAX_TERM_ORDER = 12
 """The most states one radiation term may have."""
@@ -145,6 +147,9 @@ class HydroDatabase:
     """(F, H, 6) complex wave force per metre of wave amplitude [N/m, N m/m] (Froude-Krylov and diffraction),
     phase against the wave's elevation at the body origin: the force is Re(X e^(i w t)) for the elevation
     Re(e^(i w t)) there."""
+    diffraction: DiffractionWeights | None = None
+    """How the hull pass turns its wave points' readings into the effective water velocity of the diffraction load
+    (:mod:`ocean_warp.seakeeping.wave_points`; None: the rigid-motion fit of the velocities)."""
     provenance: dict = dataclasses.field(default_factory=dict)
     """How it was computed (tool versions, panels, settings), strings and numbers; informative only."""
 
@@ -209,6 +214,8 @@ class HydroDatabase:
         if self.excitation is not None:
             data["excitation"] = {"headings_deg": np.degrees(self.excitation_headings).tolist(),
                                   "real": _rounded(self.excitation.real), "imag": _rounded(self.excitation.imag)}
+        if self.diffraction is not None:
+            data["diffraction"] = self.diffraction.to_json()
         data["provenance"] = self.provenance
         return data
 
@@ -336,6 +343,7 @@ def _parse(cls, data) -> HydroDatabase:
         headings = np.radians(_array(wave, "headings_deg", (-1,), "excitation"))
         shape = (count, len(headings), 6)
         excitation = _array(wave, "real", shape, "excitation") + 1j * _array(wave, "imag", shape, "excitation")
+    diffraction = None if data.get("diffraction") is None else DiffractionWeights.from_json(data["diffraction"])
     provenance = data.get("provenance", {})
     if not isinstance(provenance, dict):
         raise ValueError("provenance must be an object")
@@ -344,7 +352,7 @@ def _parse(cls, data) -> HydroDatabase:
                rest_height=_number(data, "rest_height"), frequencies=frequencies,
                added_mass=_array(data, "added_mass", (count, 6, 6)), damping=_array(data, "damping", (count, 6, 6)),
                added_mass_infinite=_array(data, "added_mass_infinite", (6, 6)), radiation=tuple(radiation),
-               excitation_headings=headings, excitation=excitation, provenance=provenance)
+               excitation_headings=headings, excitation=excitation, diffraction=diffraction, provenance=provenance)
 
 
 def _database_problem(db: HydroDatabase) -> str | None:
@@ -394,6 +402,8 @@ def _database_problem(db: HydroDatabase) -> str | None:
             return f"excitation must have shape ({len(w)}, {len(headings)}, 6), got {db.excitation.shape}"
         if not np.all(np.isfinite(db.excitation)):
             return "excitation has NaN or infinite values"
+    if db.diffraction is not None and not isinstance(db.diffraction, DiffractionWeights):
+        return f"diffraction must be a DiffractionWeights or None, got {type(db.diffraction).__name__}"
     return None
 
 

@@ -136,7 +136,7 @@ def test_save_and_load_round_trip(box, tmp_path):
     path = tmp_path / "box.json"
     db.save(path)
     assert path.stat().st_size < 100_000 and not list(tmp_path.glob(".tmp-*"))
-    assert json.loads(path.read_text())["format_version"] == FORMAT_VERSION == 1
+    assert json.loads(path.read_text())["format_version"] == FORMAT_VERSION == 2
     loaded = HydroDatabase.load(path, hull=box)
     assert loaded.hull_name == "box" and loaded.rest_height == db.rest_height
     for name in ("frequencies", "added_mass", "damping", "added_mass_infinite", "excitation"):  # 7 digits kept
@@ -191,9 +191,9 @@ def test_hull_fingerprint_sees_the_mesh_not_round_off():
 
 
 @pytest.mark.parametrize("edit, expected", [
-    (lambda d: d.update(format_version=2), "format version 2 is not 1, the one this ocean_warp reads; it was written "
+    (lambda d: d.update(format_version=3), "format version 3 is not 2, the one this ocean_warp reads; it was written "
                                            "by a newer ocean_warp"),
-    (lambda d: d.update(format_version="1"), "format version '1' is not 1"),
+    (lambda d: d.update(format_version="2"), "format version '2' is not 2"),
     (lambda d: d.pop("format"), "not an ocean_warp hydrodynamic database"),
     (lambda d: d.pop("damping"), "missing field 'damping'"),
     (lambda d: d["added_mass"][3][2].__setitem__(2, float("nan")), "added_mass has 1 NaN or infinite values (first "
