@@ -20,7 +20,6 @@ from typing import Any
 import warp as wp
 
 from .ocean_surface import (
-    FIELD_HEIGHT,
     FIELD_PRESSURE_LOWER,
     FIELD_VELOCITY_BELOW,
     LocalInversion,
@@ -33,7 +32,6 @@ from .ocean_surface import (
     undisplaced_position_near,
     pressure_head,
 )
-from .appendage_buoyancy import appendage_wrench
 from .spatial import vec6, wrench, wrench_at
 from .water_current import CurrentField, current_at, with_current, with_current_at_point
 
@@ -50,7 +48,6 @@ __all__ = [
     "sample_origin_water",
     "MAX_HULL_VERTICES",
     "residuary_wrench",
-    "boat_wrench",
     "NO_WAVE_HISTORY",
     "wave_motion_update",
     "WAVE_POINTS",
@@ -102,12 +99,6 @@ class HullMeshes:
     """WAVE_POINTS x WAVE_POINT_INPUTS per hull type, point-major: the weights (one per DOF) of each point's u, v,
     w [m/s] at the ocean's middle depth and dynamic pressure head [m] at its deepest in the effective water
     velocity (see :func:`water_motion_under_hull`)."""
-    appendage_volume: wp.array(dtype=float)
-    """Per hull type: the volume [m^3] of its appendages outside the mesh (``appendage_buoyancy``); 0: none."""
-    appendage_center: wp.array(dtype=wp.vec3)
-    """Per hull type: their centroid, body frame [m]."""
-    appendage_fade_height: wp.array(dtype=float)
-    """Per hull type: the band about the surface over which their buoyancy fades [m] (1 where there are none)."""
     seakeeping: wp.array(dtype=int)
     """Per hull type: 1 where it has a hydrodynamic database, whose radiation and diffraction need the water's
     motion under the hull (the wave points are sampled only then)."""
@@ -428,24 +419,6 @@ def slamming_wrench(
 
 
 @wp.func
-def boat_wrench(surface: OceanSurface, meshes: HullMeshes, kind: int, near: LocalInversion, origin: wp.vec3,
-                rotation: wp.quat, surge: float, water: WaterModel) -> vec6:
-    """What the hull pass adds once a boat to its triangles' sum, body frame, about the origin: the residuary
-    resistance at ``surge`` [m/s] through the water, and the buoyancy of the appendages outside the mesh under
-    the surface above their centroid (``near``: the choppy inversion about the boat's origin)."""
-    total = residuary_wrench(meshes, kind, surge, rotation, water)
-    volume = meshes.appendage_volume[kind]
-    if volume > 0.0:
-        center = meshes.appendage_center[kind]
-        centroid = origin + wp.quat_rotate(rotation, center)
-        q = undisplaced_position_local(surface, wp.vec2(centroid[0], centroid[1]), near)
-        height = periodic_bilinear(surface, FIELD_HEIGHT, q)[0]
-        total += appendage_wrench(volume, center, meshes.appendage_fade_height[kind], height, centroid[2], rotation,
-                                  water.density, water.gravity)
-    return total
-
-
-@wp.func
 def sample_vertex_water(surface: OceanSurface, local: wp.vec3, origin: wp.vec3, rotation: wp.quat,
                         near: LocalInversion) -> wp.vec4:
     """(pressure head p / (rho g) [m], positive where submerged, water velocity [m/s] in the body frame) at the
@@ -663,14 +636,13 @@ def hull_wrenches_kernel(vertex_rounds: int, block_dim: int, max_registers: int 
             # One block reduction for the wrench and the wave moments together.
             summed = wp.tile_sum(wp.tile(_wrench_and_moments(total, moments), preserve_type=True))[0]
             if lane == 0:
-                wrench[boat] = _wrench_part(summed) + boat_wrench(surface, meshes, kind, near, origin, rotation, surge,
-                                                                  water)
+                wrench[boat] = _wrench_part(summed) + residuary_wrench(meshes, kind, surge, rotation, water)
                 if seakeeping:
                     wave_motion_update(water_motion_under_hull(meshes, kind, _moments_part(summed), rotation),
                                        water.substep, boat, wave_velocity, wave_acceleration)
         else:
             summed_wrench = wp.tile_sum(wp.tile(total, preserve_type=True))[0]
             if lane == 0:
-                wrench[boat] = summed_wrench + boat_wrench(surface, meshes, kind, near, origin, rotation, surge, water)
+                wrench[boat] = summed_wrench + residuary_wrench(meshes, kind, surge, rotation, water)
 
     return hull_wrenches

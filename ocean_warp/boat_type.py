@@ -8,7 +8,6 @@ import numpy as np
 
 from .hull import Hull
 from .resistance import ResiduaryResistance
-from .stability import Appendages
 
 __all__ = ["BoatType", "skew", "parallel_axis_term"]
 
@@ -79,10 +78,6 @@ class BoatType:
     """The hull's hydrodynamic database (``ocean_warp.seakeeping.HydroDatabase``): its infinite-frequency added
     mass is M_A, and the simulator integrates its radiation memory and its diffraction load
     (``ocean_warp.kernels.radiation``). None: no radiation damping (a constant added mass, drag-only damping)."""
-    appendages: Appendages | None = None
-    """Volume outside the hull mesh that floats with it (keel fin, bulb, rudder: lifting surfaces to the force
-    models), whose buoyancy the hull pass adds (``ocean_warp.kernels.appendage_buoyancy``); None: the mesh holds
-    all the boat's volume."""
     residuary: ResiduaryResistance | None = None
     """The hull's residuary (wave-making) resistance, applied by the hull pass; None: none (a hull without
     one relies on the per-triangle drag, see ``HydrodynamicsConfig.cross_flow_only``)."""
@@ -116,9 +111,6 @@ class BoatType:
         if isinstance(factor, bool) or not isinstance(factor, (int, float)) or not np.isfinite(factor) or factor <= 0:
             raise ValueError(f"{owner}.astern_surge_factor must be a finite number > 0, got {factor!r}")
         object.__setattr__(self, "astern_surge_factor", float(factor))
-        if self.appendages is not None and not isinstance(self.appendages, Appendages):
-            raise ValueError(f"{owner}.appendages must be an ocean_warp.stability.Appendages or None, "
-                             f"got {self.appendages!r}")
         if self.residuary is not None and not isinstance(self.residuary, ResiduaryResistance):
             raise ValueError(f"{owner}.residuary must be a ResiduaryResistance or None, got {self.residuary!r}")
         if np.linalg.eigvalsh(self.mass_matrix).min() <= 0:

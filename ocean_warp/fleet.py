@@ -344,7 +344,6 @@ def _hull_meshes(boat_types: list[BoatType], device) -> HullMeshes:
     meshes.mass = wp.array([t.mass for t in boat_types], dtype=float, device=device)
     _add_residuary_tables(meshes, boat_types, device)
     _add_wave_points(meshes, boat_types, device)
-    _add_appendages(meshes, boat_types, device)
     meshes.seakeeping = wp.array([int(t.seakeeping is not None) for t in boat_types], dtype=int, device=device)
     return meshes
 
@@ -362,16 +361,6 @@ def _add_wave_points(meshes: HullMeshes, boat_types: list[BoatType], device) -> 
         weights.append(np.transpose(chosen, (1, 2, 0)).reshape(-1, 6))  # point-major, a vec6 per input
     meshes.wave_points = wp.array(np.concatenate(points).astype(np.float32), dtype=wp.vec2, device=device)
     meshes.wave_point_weights = wp.array(np.concatenate(weights).astype(np.float32), dtype=vec6, device=device)
-
-
-def _add_appendages(meshes: HullMeshes, boat_types: list[BoatType], device) -> None:
-    """Each type's appendages outside its mesh (a volume of 0 for a type without)."""
-    appendages = [t.appendages for t in boat_types]
-    meshes.appendage_volume = wp.array([a.volume if a else 0.0 for a in appendages], dtype=float, device=device)
-    meshes.appendage_center = wp.array(np.array([a.center if a else (0.0, 0.0, 0.0) for a in appendages]),
-                                       dtype=wp.vec3, device=device)
-    meshes.appendage_fade_height = wp.array([a.fade_height if a else 1.0 for a in appendages], dtype=float,
-                                            device=device)
 
 
 def _add_residuary_tables(meshes: HullMeshes, boat_types: list[BoatType], device) -> None:

@@ -138,19 +138,6 @@ def velocity_term_wrenches(sim: EBoatSimulator) -> tuple[dict[str, np.ndarray], 
     return {"munk": munk, "rigid_body": rigid, "radiation": radiation, "damping": damping}, mass_matrix
 
 
-def appendage_wrench(boat_type, rotation: np.ndarray, position: np.ndarray, water) -> np.ndarray:
-    """The buoyancy of the appendages outside the mesh in still water (body frame, about the origin), as the hull
-    pass adds it: rho g V clamp(1/2 + depth / fade height, 0, 1) straight up at their centroid."""
-    appendages = boat_type.appendages
-    if appendages is None:
-        return np.zeros(6)
-    center = np.asarray(appendages.center, dtype=np.float64)
-    depth = -(float(position[2]) + float(rotation[2] @ center))
-    lift = water.density * water.gravity * appendages.volume * appendages.share(depth)
-    force = rotation[2] * lift  # world z in the body frame: the third row of body -> world
-    return np.concatenate([force, np.cross(center, force)])
-
-
 def knockdown(wind_speed: float, twa: float, speed: float, sheet: float, duration: float, dt: float,
               config: EBoatConfig, device) -> tuple[dict, list[dict]]:
     """One boat's trace: the summary and a budget row per step."""
@@ -172,14 +159,13 @@ def knockdown(wind_speed: float, twa: float, speed: float, sheet: float, duratio
                "world_yaw_rate_degps": math.degrees(world_rate), "twa_deg": math.degrees(yaw),
                "speed_mps": float(state["velocity"][0, 0])}
         wrenches = {name: wrench[0] for name, wrench in rig_part_wrenches(sim).items()}
-        # The hull pass floats the appendages beside the mesh: in flat water their share is known in closed form.
-        appendage = appendage_wrench(boat_type, rotation, state["position"][0], sim.ocean.config.water)
-        wrenches["hull"] = state["hydro_wrench"][0].astype(np.float64) - appendage
+        rig = sum(wrenches.values())
+        wrenches["hull"] = state["hydro_wrench"][0].astype(np.float64)
         terms, mass_matrix = velocity_term_wrenches(sim)
         wrenches.update(terms)
         weight = rotation[2] * (-boat_type.mass * sim.ocean.config.water.gravity)
         wrenches["gravity"] = np.concatenate([weight, np.cross(boat_type.center_of_mass, weight)])
-        wrenches["appendage_buoyancy"] = appendage
+        wrenches["appendage_buoyancy"] = sim.fleet.forces.model_wrench.numpy()[0].astype(np.float64) - rig
         for name in BODY_TERMS:
             row[name] = float(wrenches[name][5])
         row["sum"] = sum(row[k] for k in BODY_TERMS)

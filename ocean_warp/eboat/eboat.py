@@ -14,6 +14,7 @@ from ..hull import Hull
 from ..hydrodynamics_config import HydrodynamicsConfig
 from ..seakeeping.database import HydroDatabase
 from ..seakeeping.eboat_database import eboat_hydro_database
+from ..kernels.appendage_buoyancy import AppendageBuoyancy
 from ..kernels.foils import FoilTables
 from ..kernels.point_buoyancy import PointBuoyancy
 from ..kernels.sailing_rig import RigParameters
@@ -278,8 +279,7 @@ class EBoat:
         added_mass = vrx.added_mass if self.seakeeping is None else None
         self.boat_type = BoatType(hull=self.hull, mass=mp.mass, center_of_mass=tuple(mp.center_of_mass),
                                   inertia=mp.inertia, added_mass=added_mass, seakeeping=self.seakeeping,
-                                  appendages=self.appendages, name=f"eboat {version.value}",
-                                  residuary=residuary, **damping)
+                                  name=f"eboat {version.value}", residuary=residuary, **damping)
         self.hydrodynamics = eboat_hydrodynamics(self.config.profile, radiation=self.seakeeping is not None)
         """The water model of this profile, in sea water (the simulator's config sets the density)."""
         self.foil_table = load_foil_table()
@@ -315,8 +315,8 @@ class EBoat:
 
     @property
     def appendages(self) -> Appendages | None:
-        """The keel fin, bulb and rudder outside the hull mesh, as ``ocean_warp.stability`` and the hull pass float
-        them (``kernels.appendage_buoyancy``; None: the procedural boat, which counts none)."""
+        """The keel fin, bulb and rudder outside the hull mesh as ``ocean_warp.stability`` floats them, as the
+        mesh hydrostatics' ``kernels.appendage_buoyancy`` does (None: the procedural boat, which counts none)."""
         geometry = self.geometry
         if geometry.appendage_volume <= 0.0:
             return None
@@ -405,6 +405,21 @@ class EBoat:
         model.gravity = water.gravity
         return model
 
+    def appendage_buoyancy(self, water: WaterConfig) -> AppendageBuoyancy | None:
+        """The buoyancy of the appendages outside the hull mesh (keel fin, bulb, rudder) in ``water``, for the
+        mesh hydrostatics (``kernels.appendage_buoyancy``); None where the geometry counts none (the procedural
+        hull)."""
+        appendages = self.appendages
+        if appendages is None:
+            return None
+        model = AppendageBuoyancy()
+        model.volume = appendages.volume
+        model.center = wp.vec3(*appendages.center)
+        model.fade_height = appendages.fade_height
+        model.density = water.density
+        model.gravity = water.gravity
+        return model
+
     def rest_height(self, device="cpu", water: WaterConfig | None = None) -> float:
         """Height [m] of the body origin above still ``water`` (default sea water) when the boat floats
         upright at rest on its mesh (found by bisection on the vertical force of the hull pass, without drag,
@@ -420,7 +435,7 @@ class EBoat:
                       device=device)
         simulator = Simulator(still, fleet, SimulatorConfig(hydrodynamics=self.hydrodynamics.without_drag()))
         low, high = -0.5, 0.5
-        weight = self.mass_properties.mass * water.gravity  # the hull pass floats the appendages too
+        weight = self.hull_load(water.density) * water.gravity
         for _ in range(40):
             middle = 0.5 * (low + high)
             fleet.reset(position=[0.0, 0.0, middle])

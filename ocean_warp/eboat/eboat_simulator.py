@@ -11,6 +11,7 @@ import warp as wp
 from ocean_warp.current import Current
 from ocean_warp.fleet import Fleet
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
+from ocean_warp.kernels.appendage_buoyancy import appendage_buoyancy
 from ocean_warp.kernels.point_buoyancy import point_buoyancy
 from ocean_warp.device_structs import struct_from
 from ocean_warp.kernels.sailing_rig import RigControl, RigState, RigSurroundings, reset_rig, sailing_rig
@@ -84,6 +85,19 @@ class _PointBuoyancyModel:
                   outputs=[fleet.forces.model_wrench])
 
 
+class _AppendageBuoyancyModel:
+    """The buoyancy of keel, bulb and rudder, which the hull mesh leaves out, as a force model."""
+
+    def __init__(self, parameters):
+        self.parameters = parameters
+
+    def substep(self, simulator) -> None:
+        fleet = simulator.fleet
+        wp.launch(appendage_buoyancy, dim=fleet.count, device=simulator.device,
+                  inputs=[self.parameters, simulator.ocean.surface, fleet.state.position, fleet.state.orientation],
+                  outputs=[fleet.forces.model_wrench])
+
+
 def _fleet(eboat: EBoat, config: EBoatSimulatorConfig, count: int, device,
            first_boat: int = 0) -> tuple[Fleet, np.ndarray]:
     """The fleet, and each boat's factor on mass and inertia: one boat type without mass variation, else
@@ -153,6 +167,8 @@ class EBoatSimulator:
         models = [self.wind]
         if config.boat.hydrostatics is Hydrostatics.POINTS:
             models.append(_PointBuoyancyModel(self.eboat, device, config.water))
+        elif (appendages := self.eboat.appendage_buoyancy(config.water)) is not None:
+            models.append(_AppendageBuoyancyModel(appendages))
         models += [self.rig, self.sensors]
         self.simulator = Simulator(ocean, self.fleet, config.simulator_config(), models=models, current=self.current)
         self.ocean = ocean

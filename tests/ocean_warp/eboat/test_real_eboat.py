@@ -7,12 +7,12 @@ References are the sheet's figures (typed in here), hydrostatics of the mesh by 
 scipy's rotations, and hand-computed forces.
 """
 
-import dataclasses
 import math
 
 import numpy as np
 import pytest
 import trimesh
+import warp as wp
 from scipy.spatial.transform import Rotation
 
 import ocean_warp as ow
@@ -21,6 +21,8 @@ from ocean_warp.eboat.offsets_hull import offsets_hull, parse_hull_offsets
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.eboat.urdf_links import urdf_links
 from ocean_warp.frames import roll_pitch_yaw
+from ocean_warp.kernels.appendage_buoyancy import appendage_buoyancy
+from ocean_warp.kernels.spatial import vec6
 from ocean_warp.stability import righting_arm_curve
 from tests.waterlines import centre_of_volume_x, port_waterline, volume_by_waterlines, waterplane
 
@@ -252,30 +254,25 @@ def test_lead_bulb_puts_the_centre_of_gravity_below_the_waterline():
 
 def test_appendage_buoyancy_pushes_up_at_the_centroid_and_fades_at_the_surface(device, rng):
     """Four boats in still water at random attitudes (up to 30 deg), their appendages' centroid deep, 0.1 m
-    below the surface, at it and 0.3 m above: the hull pass adds rho g V (1, 1/2 + 0.1 / 0.5, 1/2, 0) straight up
-    at the centroid, in the body frame, as a wrench about the origin (the band 0.5 m), to the mesh's own wrench
-    (the same boats' hull type without its appendages)."""
+    below the surface, at it and 0.3 m above: rho g V (1, 1/2 + 0.1 / 0.5, 1/2, 0) straight up at the centroid,
+    in the body frame, as a wrench about the origin (the band 0.5 m)."""
     eboat = EBoat()
     water = ow.WaterConfig()
+    model = eboat.appendage_buoyancy(water)
     ocean = ow.Ocean(ow.OceanConfig(tile_size=64.0, resolution=16, significant_wave_height=0.0), device=device)
     ocean.update(0.0)
     turns = Rotation.from_rotvec(rng.normal(size=(4, 3)) * np.radians(30.0) / math.sqrt(3.0))
     center = np.array(eboat.geometry.appendage_center)
     depths = np.array([2.0, 0.1, 0.0, -0.3])
     positions = np.column_stack([np.zeros((4, 2)), -depths - turns.apply(center)[:, 2]])
-    with_appendages = eboat.boat_type
-    mesh_only = dataclasses.replace(with_appendages, appendages=None)
-    wrenches = []
-    for boat_type in (with_appendages, mesh_only):
-        fleet = ow.Fleet(boat_type, 4, device=device)
-        fleet.reset(position=positions, orientation=turns.as_quat())
-        ow.Simulator(ocean, fleet, ow.SimulatorConfig(hydrodynamics=eboat.hydrodynamics.without_drag())
-                     ).compute_hull_wrenches()
-        wrenches.append(fleet.forces.hydro_wrench.numpy().astype(np.float64))
+    wrench = wp.zeros(4, dtype=vec6, device=device)
+    wp.launch(appendage_buoyancy, dim=4, device=device,
+              inputs=[model, ocean.surface, wp.array(positions, dtype=wp.vec3, device=device),
+                      wp.array(turns.as_quat(), dtype=wp.quat, device=device)], outputs=[wrench])
     lift = water.density * water.gravity * APPENDAGE_VOLUME * np.array([1.0, 0.7, 0.5, 0.0])
     force = turns.inv().apply(np.column_stack([np.zeros((4, 2)), lift]))
     expected = np.column_stack([force, np.cross(center, force)])
-    np.testing.assert_allclose(wrenches[0] - wrenches[1], expected, atol=2e-3 * lift[0])
+    np.testing.assert_allclose(wrench.numpy(), expected, atol=2e-3 * lift[0])
 
 
 def test_real_boat_rests_upright_near_its_origin_in_the_simulator(device):
