@@ -103,9 +103,11 @@ class EBoatConfig:
     """Seakeeping from potential flow for the real hull in the physics profile's mesh model: the shipped
     hydrodynamic database's infinite-frequency added mass, radiation memory and diffraction load
     (``ocean_warp.seakeeping``, ``ocean_warp.kernels.radiation``), with the drag terms that stood in for them
-    removed. Off by default for now: against capytaine its RAOs hold within 10 % at 1.5-5 s, but the boat under
-    sail with it is not yet validated (it broaches on a broad reach in 7 m/s, its polar is erratic there, and the
-    step costs 40 % more; ``benchmarks/RESULTS.md``, issue 33)."""
+    removed, all of it in a frame that follows the heading but not the heel and trim
+    (``kernels.seakeeping_frame``). Off by default for its cost (the step about 35 % more than without it
+    before issue 33, against 15-22 % without it); against capytaine its RAOs hold within 17 % (heave, pitch) and
+    20 % (roll) from 0.9 s, and under sail it passes the same polar and tacking checks (``benchmarks/RESULTS.md``,
+    issue 33)."""
     hull_shape: HullShape = dataclasses.field(default_factory=HullShape)
     """Dimensions of the procedural canoe body (``hull`` "procedural" only)."""
     hull_triangles: int | None = None
