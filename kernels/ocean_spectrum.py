@@ -178,11 +178,13 @@ def _second_pair(pairs: wp.vec4f) -> wp.vec2f:
 
 
 @functools.cache
-def spectra_along_y_kernel(n: int):
+def spectra_along_y_kernel(n: int, depth_fields: bool = True):
     """Pass 1, kernel ``(cells, time, loop_period, levels, spectra)``: cells (n, n) ``spectrum_cell`` x-major,
     time (1,) float64 [s], loop_period float64 [s] (> 0: the time is taken modulo it, for a sea whose
     frequencies are its multiples; 0: never), levels (z1, z2, z3 [m] below still water, water depth [m]) of
-    fields 4-6, spectra (n, n) ``packed_spectra`` x-major. One block per kx row: launch dim [n]."""
+    fields 4-6, spectra (n, n) ``packed_spectra`` x-major. One block per kx row: launch dim [n]. Without
+    ``depth_fields`` fields 4-6 are neither formed nor transformed (their spectra are zero)."""
+    with_depth_fields = depth_fields
 
     @wp.kernel(enable_backward=False, module="unique")
     def spectra_along_y(
@@ -206,15 +208,20 @@ def spectra_along_y_kernel(n: int):
         wp.tile_ifft(slope)
         velocity = wp.tile_map(velocity_spectrum, cell_row, amplitude)
         wp.tile_ifft(velocity)
-        upper = wp.tile_map(upper_pressure_spectrum, cell_row, amplitude, levels)
-        wp.tile_ifft(upper)
-        lower = wp.tile_map(lower_pressure_spectrum, cell_row, amplitude, levels)
-        wp.tile_ifft(lower)
-        below = wp.tile_map(velocity_below_spectrum, cell_row, amplitude, levels)
-        wp.tile_ifft(below)
+        depth_quad = wp.tile_zeros(shape=(1, n), dtype=wp.vec4f)
+        below_quad = wp.tile_zeros(shape=(1, n), dtype=wp.vec4f)
+        if wp.static(with_depth_fields):
+            upper = wp.tile_map(upper_pressure_spectrum, cell_row, amplitude, levels)
+            wp.tile_ifft(upper)
+            lower = wp.tile_map(lower_pressure_spectrum, cell_row, amplitude, levels)
+            wp.tile_ifft(lower)
+            below = wp.tile_map(velocity_below_spectrum, cell_row, amplitude, levels)
+            wp.tile_ifft(below)
+            depth_quad = wp.tile_map(_pack_pairs, upper, lower)
+            below_quad = wp.tile_map(_pack_pairs, below, below)
         packed = wp.tile_map(
             _pack_quads, wp.tile_map(_pack_pairs, height, displacement), wp.tile_map(_pack_pairs, slope, velocity),
-            wp.tile_map(_pack_pairs, upper, lower), wp.tile_map(_pack_pairs, below, below)
+            depth_quad, below_quad
         )
         staged = wp.tile_empty(shape=(1, n), dtype=packed_spectra, storage="shared")
         wp.tile_assign(staged, packed)
@@ -224,17 +231,18 @@ def spectra_along_y_kernel(n: int):
 
 
 @functools.cache
-def fields_along_x_kernel(n: int):
+def fields_along_x_kernel(n: int, depth_fields: bool = True):
     """Pass 2, kernel ``(spectra_quads, fields)``: spectra_quads is pass 1's output seen as (n, 4 n)
     ``vec4f``, fields (7 n, n) vec2f, field f in rows [f n, (f + 1) n), index [iy, ix]. One block per
-    y row: launch dim [n]."""
+    y row: launch dim [n]. Without ``depth_fields`` fields 4-6 are left as they are (zero)."""
+    quads = PACKED_QUADS if depth_fields else 2
 
     @wp.kernel(enable_backward=False, module="unique")
     def fields_along_x(spectra_quads: wp.array2d(dtype=wp.vec4f), fields: wp.array2d(dtype=wp.vec2f)):
         row = wp.tid()
         strip = wp.tile_load(spectra_quads, shape=(n, PACKED_QUADS), offset=(0, PACKED_QUADS * row),
                              storage="shared")
-        for quad in range(PACKED_QUADS):
+        for quad in range(wp.static(quads)):
             pairs = wp.tile_transpose(wp.tile_view(strip, offset=(0, quad), shape=(n, 1)))
             first = wp.tile_map(_first_pair, pairs)
             wp.tile_ifft(first)

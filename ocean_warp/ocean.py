@@ -95,7 +95,8 @@ class Ocean:
         sample.height, sample.normal, sample.velocity
     """
 
-    def __init__(self, config: OceanConfig | None = None, *, device=None, fft_plan: FftPlan | None = None):
+    def __init__(self, config: OceanConfig | None = None, *, device=None, fft_plan: FftPlan | None = None,
+                 depth_fields: bool = True):
         self.config = config if config is not None else OceanConfig()
         if not isinstance(self.config, OceanConfig):
             raise TypeError(f"Ocean expects an OceanConfig, got {type(self.config).__name__}")
@@ -138,8 +139,13 @@ class Ocean:
         """Largest |t| [s] :meth:`update` accepts: beyond it the float64 phase omega t of the grid's fastest
         wave is no longer exact to the float32 the fields are computed in (:func:`exact_time_limit`)."""
         self._loop_period = wp.float64(self.config.loop_period or 0.0)
-        self._along_y = spectra_along_y_kernel(n)
-        self._along_x = fields_along_x_kernel(n)
+        if not isinstance(depth_fields, bool):
+            raise ValueError(f"Ocean: depth_fields must be True or False, got {depth_fields!r}")
+        self.depth_fields = depth_fields
+        """Whether the ocean evaluates fields 4-6, the pressure at depth and the water's motion below, which the
+        mesh hull and seakeeping read (False: they stay zero; a four-point hull reads only the surface)."""
+        self._along_y = spectra_along_y_kernel(n, depth_fields)
+        self._along_x = fields_along_x_kernel(n, depth_fields)
         self._slots: tuple[wp.array, wp.array] | None = None
         self.update(0.0)
 

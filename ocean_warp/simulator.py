@@ -100,6 +100,9 @@ class Simulator:
         self.clock = wp.clone(ocean.time)
         """(1,) float64 simulated time [s], the simulation's state beside the fleet's (starts at the ocean's
         time); every substep evaluates the ocean at it and advances it on the device."""
+        if self.config.hull_pressure and not ocean.depth_fields:
+            raise ValueError("Simulator: the hull pass reads the ocean's pressure at depth, which this ocean does not "
+                             "evaluate; build it with Ocean(..., depth_fields=True)")
         self.block_dim = self.config.block_dim or (128 if self.device.is_cuda else 1)
         vertex_rounds = -(-fleet.model.max_vertex_count // self.block_dim)
         self.water = _water_model(self.config.hydrodynamics, ocean.config.water, self.config.substep_dt)

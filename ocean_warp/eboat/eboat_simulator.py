@@ -149,7 +149,8 @@ class EBoatSimulator:
         device = self.device
         self.eboat = EBoat(config.boat)
         if ocean is None:
-            ocean = Ocean(config.ocean, device=device)
+            # The four-point hull reads only the surface: the pressure at depth would cost it most of its step.
+            ocean = Ocean(config.ocean, device=device, depth_fields=config.boat.hydrostatics is Hydrostatics.MESH)
         elif ocean.config.water != config.water:
             raise ValueError(f"EBoatSimulator: the ocean given holds {ocean.config.water}, the config "
                              f"{config.water}; the boats sail in the water of the ocean they float on")
