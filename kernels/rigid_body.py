@@ -28,7 +28,7 @@ import warp as wp
 from .hull_forces import NO_WAVE_HISTORY
 from .radiation import RadiationModel, diffraction_wrench, radiation_force
 from .seakeeping_frame import from_heading_frame, heading_frame_added_mass, heading_tilt, to_heading_frame
-from .spatial import vec6, wrench
+from .spatial import block3, mat66, skew, vec6, wrench
 
 __all__ = [
     "mat66",
@@ -54,7 +54,6 @@ __all__ = [
     "advance_time",
 ]
 
-mat66 = wp.types.matrix(shape=(6, 6), dtype=wp.float32)
 
 STATUS_NONFINITE = wp.constant(1)
 """The state turned NaN or infinite; the boat is frozen at its last finite state until reset."""
@@ -148,22 +147,6 @@ def velocity_terms(
 
 
 @wp.func
-def _skew(a: wp.vec3) -> wp.mat33:
-    """S(a), with S(a) b = a x b."""
-    return wp.mat33(0.0, -a[2], a[1], a[2], 0.0, -a[0], -a[1], a[0], 0.0)
-
-
-@wp.func
-def _block(m: mat66, row: int, col: int) -> wp.mat33:
-    """The 3x3 block of a 6x6 matrix starting at (row, col)."""
-    out = wp.mat33()
-    for i in range(3):
-        for j in range(3):
-            out[i, j] = m[row + i, col + j]
-    return out
-
-
-@wp.func
 def velocity_terms_jacobian(
     nu: vec6, nu_r: vec6, mass: float, r_g: wp.vec3, inertia_origin: wp.mat33, added_mass: mat66,
     linear_damping: vec6, quadratic_damping: vec6,
@@ -172,28 +155,28 @@ def velocity_terms_jacobian(
     v = wp.vec3(nu[0], nu[1], nu[2])
     w = wp.vec3(nu[3], nu[4], nu[5])
     v_r = wp.vec3(nu_r[0], nu_r[1], nu_r[2])
-    s_w = _skew(w)
-    s_v = _skew(v)
-    s_r = _skew(r_g)
+    s_w = skew(w)
+    s_v = skew(v)
+    s_r = skew(r_g)
     eye = wp.identity(n=3, dtype=float)
     # rigid body: d/dv, d/dw of m (w x v + w x (w x r)) and w x I w + m r x (w x v)
     f_v = mass * s_w
     f_w = mass * (-s_v + wp.dot(w, r_g) * eye + wp.outer(w, r_g) - 2.0 * wp.outer(r_g, w))
     m_v = mass * (s_r * s_w)
-    m_w = s_w * inertia_origin - _skew(inertia_origin * w) - mass * (s_r * s_v)
+    m_w = s_w * inertia_origin - skew(inertia_origin * w) - mass * (s_r * s_v)
     # added mass: (w x a1, v_r x a1 + w x a2), a = M_A nu_r
     a = added_mass * nu_r
     a1 = wp.vec3(a[0], a[1], a[2])
     a2 = wp.vec3(a[3], a[4], a[5])
-    a11 = _block(added_mass, 0, 0)
-    a12 = _block(added_mass, 0, 3)
-    a21 = _block(added_mass, 3, 0)
-    a22 = _block(added_mass, 3, 3)
-    s_vr = _skew(v_r)
+    a11 = block3(added_mass, 0, 0)
+    a12 = block3(added_mass, 0, 3)
+    a21 = block3(added_mass, 3, 0)
+    a22 = block3(added_mass, 3, 3)
+    s_vr = skew(v_r)
     f_v += s_w * a11
-    f_w += -_skew(a1) + s_w * a12
-    m_v += -_skew(a1) + s_vr * a11 + s_w * a21
-    m_w += s_vr * a12 - _skew(a2) + s_w * a22
+    f_w += -skew(a1) + s_w * a12
+    m_v += -skew(a1) + s_vr * a11 + s_w * a21
+    m_w += s_vr * a12 - skew(a2) + s_w * a22
     jacobian = mat66()
     for i in range(3):
         for j in range(3):
@@ -209,7 +192,7 @@ def velocity_terms_jacobian(
 @wp.func
 def rigid_body_mass_matrix(mass: float, r_g: wp.vec3, inertia_origin: wp.mat33) -> mat66:
     """Fossen's M_RB about the body origin: [[m I, -m S(r_g)], [m S(r_g), I_o]]."""
-    s_r = mass * _skew(r_g)
+    s_r = mass * skew(r_g)
     out = mat66()
     for i in range(3):
         out[i, i] = mass

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import warp as wp
 
-from .spatial import heading_of, vec6, wrench
+from .spatial import block3, heading_of, mat66, skew, vec6, wrench
 
 __all__ = ["MIN_HEADING_COSINE", "heading_tilt", "to_heading_frame", "from_heading_frame",
            "heading_frame_added_mass", "HeadingAddedMass"]
@@ -37,8 +37,6 @@ __all__ = ["MIN_HEADING_COSINE", "heading_tilt", "to_heading_frame", "from_headi
 MIN_HEADING_COSINE = wp.constant(0.1)
 """The smallest horizontal share of the bow axis (cosine of the pitch) that the heading rate divides by: a hull
 pitched beyond 84 deg has no meaningful heading; the clamp keeps its rate finite."""
-
-mat66 = wp.types.matrix(shape=(6, 6), dtype=wp.float32)
 
 
 @wp.func
@@ -63,20 +61,6 @@ def from_heading_frame(tilt: wp.mat33, heading: vec6) -> vec6:
     back = wp.transpose(tilt)
     return wrench(back * wp.vec3(heading[0], heading[1], heading[2]),
                   back * wp.vec3(heading[3], heading[4], heading[5]))
-
-
-@wp.func
-def _skew(a: wp.vec3) -> wp.mat33:
-    return wp.mat33(0.0, -a[2], a[1], a[2], 0.0, -a[0], -a[1], a[0], 0.0)
-
-
-@wp.func
-def _block(m: mat66, row: int, col: int) -> wp.mat33:
-    out = wp.mat33()
-    for i in range(3):
-        for j in range(3):
-            out[i, j] = m[row + i, col + j]
-    return out
 
 
 @wp.func
@@ -132,21 +116,21 @@ def heading_frame_added_mass(tilt: wp.mat33, nu_r: vec6, added_mass: mat66) -> H
     # Jacobian in the heading frame: tilt_rate = P w, frame_rate = Z w with Z = up g^T, P = I - Z
     z_g = wp.outer(up, g)
     p = wp.identity(n=3, dtype=float) - z_g
-    s_t = _skew(tilt_rate)
-    s_f = _skew(frame_rate)
-    s_v = _skew(v)
-    s_w = _skew(w)
-    a11 = _block(added_mass, 0, 0)
-    a12 = _block(added_mass, 0, 3)
-    a21 = _block(added_mass, 3, 0)
-    a22 = _block(added_mass, 3, 3)
+    s_t = skew(tilt_rate)
+    s_f = skew(frame_rate)
+    s_v = skew(v)
+    s_w = skew(w)
+    a11 = block3(added_mass, 0, 0)
+    a12 = block3(added_mass, 0, 3)
+    a21 = block3(added_mass, 3, 0)
+    a22 = block3(added_mass, 3, 3)
     # d(w_t x v)/dv = S(w_t), d/dw = -S(v) P; d(w_t x w)/dw = S(w_t) - S(w) P
     d_lin_w = -(s_v * p)
     d_ang_w = s_t - s_w * p
     f_v = a11 * s_t + s_f * a11
-    f_w = a11 * d_lin_w + a12 * d_ang_w + s_f * a12 - _skew(a1) * z_g
-    m_v = a21 * s_t + s_f * a21 + s_v * a11 - _skew(a1)
-    m_w = a21 * d_lin_w + a22 * d_ang_w + s_f * a22 - _skew(a2) * z_g + s_v * a12
+    f_w = a11 * d_lin_w + a12 * d_ang_w + s_f * a12 - skew(a1) * z_g
+    m_v = a21 * s_t + s_f * a21 + s_v * a11 - skew(a1)
+    m_w = a21 * d_lin_w + a22 * d_ang_w + s_f * a22 - skew(a2) * z_g + s_v * a12
 
     out = HeadingAddedMass()
     out.mass = _congruent(tilt, a11, a12, a21, a22)

@@ -11,9 +11,11 @@ import math
 
 import warp as wp
 
-__all__ = ["vec6", "PI", "DEGREES", "wrench", "wrench_at", "point_velocity", "heading_of", "wrap_angle"]
+__all__ = ["vec6", "mat66", "PI", "DEGREES", "wrench", "wrench_at", "point_velocity", "heading_of", "wrap_angle",
+           "skew", "block3"]
 
 vec6 = wp.types.vector(length=6, dtype=wp.float32)
+mat66 = wp.types.matrix(shape=(6, 6), dtype=wp.float32)
 
 PI = wp.constant(math.pi)
 DEGREES = wp.constant(180.0 / math.pi)
@@ -48,3 +50,19 @@ def heading_of(q: wp.quat) -> float:
 def wrap_angle(angle: float) -> float:
     """``angle`` [rad] wrapped into [-pi, pi)."""
     return angle - 2.0 * PI * wp.floor((angle + PI) / (2.0 * PI))
+
+
+@wp.func
+def skew(a: wp.vec3) -> wp.mat33:
+    """S(a), with S(a) b = a x b."""
+    return wp.mat33(0.0, -a[2], a[1], a[2], 0.0, -a[0], -a[1], a[0], 0.0)
+
+
+@wp.func
+def block3(m: mat66, row: int, col: int) -> wp.mat33:
+    """The 3x3 block of a 6x6 matrix starting at (row, col)."""
+    out = wp.mat33()
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = m[row + i, col + j]
+    return out
