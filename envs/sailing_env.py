@@ -10,6 +10,7 @@ arrays that torch reads through views bound in the constructor (``env.buffers``)
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -307,6 +308,15 @@ class SailingEnv:
         same spectrum shape, directions and phases); returns the height the grid holds."""
         self.simulator.ocean.set_significant_wave_height(hs)
         return self.significant_wave_height
+
+    def set_start(self, start) -> None:
+        """Draw the episodes that start from now on from ``start`` (a ``StartConfig``: a training curriculum's
+        wind and leg ranges); the decision's graph is captured anew at the next step. Episodes under way are
+        not touched."""
+        self.task = dataclasses.replace(self.task, start=start)
+        self.start_distribution = _start_distribution(self.task, self.start_distribution.start_height)
+        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
+                                                   capture=self.task.simulator.capture_graph)
 
     def close(self) -> None:
         """Nothing to release (the protocol's ``close``: Warp frees the arrays with the env)."""

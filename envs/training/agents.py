@@ -13,7 +13,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from ocean_warp.validation import require_in_range, require_int_in_range, require_positive
+from ocean_warp.validation import require_in_range, require_int_in_range, require_positive, require_range_pair
 
 from ..registration import make_task_config
 from ..tasks.task_configs import (
@@ -53,9 +53,14 @@ class PpoConfig:
     entropy_coef: float = 0.005
     value_loss_coef: float = 1.0
     max_grad_norm: float = 1.0
+    privileged_critic: bool = True
+    """The critic sees the policy's observation and privileged truth (distance, bearing, velocities, attitude,
+    true wind, progress; the env's ``critic`` group); False: the policy's observation only."""
 
     def __post_init__(self):
         owner = "PpoConfig"
+        if not isinstance(self.privileged_critic, bool):
+            raise ValueError(f"{owner}.privileged_critic must be True or False, got {self.privileged_critic!r}")
         dims = tuple(self.hidden_dims)
         if not dims or any(not isinstance(d, int) or isinstance(d, bool) or not 1 <= d <= 4096 for d in dims):
             raise ValueError(f"{owner}.hidden_dims must be a non-empty sequence of widths 1..4096, got "
@@ -87,7 +92,7 @@ class PpoConfig:
         return {
             "num_steps_per_env": steps_per_env,
             "save_interval": 10**9,  # checkpoints are written by ocean_warp's trainer, atomically
-            "obs_groups": {"actor": ["policy"], "critic": ["critic"]},
+            "obs_groups": {"actor": ["policy"], "critic": ["critic" if self.privileged_critic else "policy"]},
             "actor": self.actor_config(),
             "critic": self.critic_config(),
             "algorithm": {"class_name": "PPO", "learning_rate": self.learning_rate, "schedule": self.schedule,
@@ -101,16 +106,20 @@ class PpoConfig:
 
 @dataclasses.dataclass(frozen=True)
 class CurriculumConfig:
-    """The sea grows with success: level k trains in ``sea_states[k]`` (Hs [m]); the trainer moves up a
-    level when the success rate of the episodes that ended over the last ``window`` iterations reaches
-    ``promote_success``. With ``randomize``, each iteration draws Hs uniformly in [0, the level's Hs]
-    (domain randomisation of the sea state: one sea per rollout, every boat in it). Empty
-    ``sea_states``: the task's own sea throughout."""
+    """Sea, wind and legs grow with success. At level k the boats train in ``sea_states[k]`` (Hs [m]), with
+    the true wind drawn per episode in ``wind_speeds[k]`` (low, high) [m/s] and the waypoint at a distance in
+    ``waypoint_distances[k]`` (low, high) [m]; each of the three may be empty (the task's own throughout) or
+    hold one entry per level. The trainer moves up a level when the success rate of the episodes that ended
+    over the last ``window`` iterations reaches ``promote_success``. With ``randomize``, each iteration draws
+    Hs uniformly in [0, the level's Hs] (domain randomisation of the sea state: one sea per rollout, every
+    boat in it). All three empty: no curriculum."""
 
     sea_states: tuple[float, ...] = ()
     promote_success: float = 0.8
     window: int = 5
     randomize: bool = True
+    wind_speeds: tuple[tuple[float, float], ...] = ()
+    waypoint_distances: tuple[tuple[float, float], ...] = ()
 
     def __post_init__(self):
         owner = "CurriculumConfig"
@@ -118,8 +127,31 @@ class CurriculumConfig:
         if any(not math.isfinite(h) or h < 0.0 for h in states) or list(states) != sorted(states):
             raise ValueError(f"{owner}.sea_states must be increasing wave heights >= 0 [m], got {self.sea_states!r}")
         object.__setattr__(self, "sea_states", states)
+        for name, high in (("wind_speeds", 40.0), ("waypoint_distances", 10_000.0)):
+            ranges = tuple(require_range_pair(owner, f"{name}[{k}]", pair, 0.0, high)
+                           for k, pair in enumerate(getattr(self, name)))
+            object.__setattr__(self, name, ranges)
+        lengths = {len(v) for v in (self.sea_states, self.wind_speeds, self.waypoint_distances) if v}
+        if len(lengths) > 1:
+            raise ValueError(f"{owner}: sea_states, wind_speeds and waypoint_distances must each be empty or hold "
+                             f"one entry per level, got {len(self.sea_states)}, {len(self.wind_speeds)} and "
+                             f"{len(self.waypoint_distances)} entries")
         require_in_range(owner, "promote_success", self.promote_success, 0.0, 1.0)
         require_int_in_range(owner, "window", self.window, 1, 10_000)
+
+    @property
+    def levels(self) -> int:
+        """Levels of the curriculum (0: none)."""
+        return max(len(self.sea_states), len(self.wind_speeds), len(self.waypoint_distances))
+
+    def start(self, base: StartConfig, level: int) -> StartConfig:
+        """``base`` with the wind and waypoint-distance ranges of ``level`` (where this curriculum sets them)."""
+        changes = {}
+        if self.wind_speeds:
+            changes["wind_speed"] = self.wind_speeds[level]
+        if self.waypoint_distances:
+            changes["waypoint_distance"] = self.waypoint_distances[level]
+        return dataclasses.replace(base, **changes) if changes else base
 
 
 @dataclasses.dataclass(frozen=True)

@@ -114,12 +114,12 @@ class _Curriculum:
 
     @property
     def active(self) -> bool:
-        return bool(self.config.sea_states)
+        return self.config.levels > 0
 
     def sea_state(self, seed: int, iteration: int) -> float | None:
         """Hs [m] for this iteration (None: no curriculum); drawn from (seed, iteration), not from a stream,
         so a resumed run draws the same."""
-        if not self.active:
+        if not self.config.sea_states:
             return None
         top = self.config.sea_states[self.level]
         if not self.config.randomize:
@@ -131,7 +131,7 @@ class _Curriculum:
             return
         self.window = (self.window + [success_rate])[-self.config.window:]
         full = len(self.window) == self.config.window
-        if full and np.mean(self.window) >= self.config.promote_success and self.level + 1 < len(self.config.sea_states):
+        if full and np.mean(self.window) >= self.config.promote_success and self.level + 1 < self.config.levels:
             self.level += 1
             self.window = []
 
@@ -370,6 +370,12 @@ class Training:
         if context.distributed:
             self.alg.broadcast_parameters()  # rank 0's fresh networks (a checkpoint gave every rank the same already)
         self.base_sea_state = self.env.significant_wave_height
+        self.start_level = None
+        """The curriculum level whose wind and leg ranges the environments draw from (None: the task's)."""
+        curriculum = config.curriculum
+        if (curriculum.wind_speeds or curriculum.waypoint_distances) and not hasattr(self.env, "set_start"):
+            raise ValueError("a curriculum over wind or legs needs environments that take a new start "
+                             f"distribution (SailingEnv.set_start); {type(self.env).__name__} does not")
         self.runner.logger.git_status_repos = []  # rsl-rl would store its own repository's git diff in the run
         with contextlib.redirect_stdout(io.StringIO()):
             self.runner.logger.init_logging_writer()
@@ -410,6 +416,10 @@ class Training:
         self.sea_state = self.curriculum.sea_state(self.seed, iteration)
         if self.sea_state is not None:
             self.env.set_significant_wave_height(self.sea_state)
+        curriculum = config.curriculum
+        if (curriculum.wind_speeds or curriculum.waypoint_distances) and self.start_level != self.curriculum.level:
+            self.env.set_start(curriculum.start(config.train_task.start, self.curriculum.level))
+            self.start_level = self.curriculum.level
 
     def collect(self, iteration: int) -> tuple[_Rollout | None, Exception | None]:
         """The iteration's rollout into PPO's storage and its returns. Returns the counts of the episodes

@@ -271,6 +271,43 @@ def test_curriculum_moves_up_on_success_and_draws_reproducible_seas():
         CurriculumConfig(sea_states=(0.5, 0.1))
 
 
+def test_curriculum_over_wind_and_legs_moves_the_start_the_envs_draw(rng):
+    """Levels of wind and leg ranges without sea states: the curriculum moves up on success as with seas, and
+    the start it gives is drawn by the environments from then on (every new episode's wind speed and
+    waypoint distance inside the level's ranges, which the first level's exclude)."""
+    winds = ((3.0, 5.0), (8.0, 9.0))
+    legs = ((20.0, 30.0), (60.0, 70.0))
+    config = CurriculumConfig(wind_speeds=winds, waypoint_distances=legs, promote_success=0.5, window=2)
+    curriculum = _Curriculum(config)
+    assert curriculum.active and config.levels == 2 and curriculum.sea_state(seed=0, iteration=0) is None
+    base = quick_task().start
+    assert config.start(base, 0).wind_speed == winds[0] and config.start(base, 0).heading_deg == base.heading_deg
+    for rate in (0.6, 0.7):
+        curriculum.record(rate)
+    assert curriculum.level == 1
+    env = SailingEnv(quick_task(), 16, device="cpu", seed=int(rng.integers(1000)))
+    env.set_start(config.start(base, curriculum.level))
+    env.reset()
+    speeds = env.simulator.start.wind_speed.numpy()
+    targets = env.buffers.target.numpy()[:, :2] - env.buffers.origin.numpy()[:, :2]
+    distances = np.linalg.norm(targets, axis=1)
+    assert np.all((speeds >= 8.0) & (speeds <= 9.0)), speeds
+    assert np.all((distances >= 60.0 - 1e-3) & (distances <= 70.0 + 1e-3)), distances
+    env.step(torch.zeros(16, 3))  # the recaptured decision runs with the new start
+    with pytest.raises(ValueError, match="one entry per level"):
+        CurriculumConfig(sea_states=(0.1, 0.3), wind_speeds=((3.0, 5.0),))
+    with pytest.raises(ValueError, match=r"wind_speeds\[0\]"):
+        CurriculumConfig(wind_speeds=((5.0, 3.0),))
+
+
+def test_the_critic_sees_privileged_truth_unless_told_not_to():
+    assert PpoConfig().runner_config(8)["obs_groups"] == {"actor": ["policy"], "critic": ["critic"]}
+    plain = PpoConfig(privileged_critic=False).runner_config(8)["obs_groups"]
+    assert plain == {"actor": ["policy"], "critic": ["policy"]}
+    with pytest.raises(ValueError, match="privileged_critic"):
+        PpoConfig(privileged_critic=1)
+
+
 def test_every_task_has_a_valid_agent_config():
     from ocean_warp.envs import TASK_IDS
 
