@@ -146,7 +146,8 @@ class RewardConfig:
     |level|. Plus ``reach_bonus`` per waypoint reached, minus ``lost_penalty`` when the boat is lost,
     minus ``flagged_penalty`` when the simulator flags it (capsized, non-finite, sunk, flying, bad
     input) or, instead, ``collision_penalty`` when the flag is a collision; minus ``smoothness``
-    sum((a - a_prev)^2) and ``time_cost`` every decision; and on a task with obstacles, minus the
+    sum((a - a_prev)^2), ``time_cost`` and the motor's energy ``energy_cost`` (|level| / 5)^1.5
+    ``decision_period`` every decision; and on a task with obstacles, minus the
     proximity cost ``proximity_cost`` max(0, 1 - g / ``proximity_range``) every decision the boat's
     capsule is a gap g [m] from the nearest obstacle. The progress and proximity terms count only on
     decisions that end unflagged. The level is the one commanded: 0 on a task without propeller
@@ -173,6 +174,10 @@ class RewardConfig:
     ``proximity_range``); 0 in the tasks without obstacles."""
     proximity_range: float = 5.0
     """Gap [m] beyond which an obstacle costs nothing."""
+    energy_cost: float = 0.0
+    """The battery's price: cost per second of the motor at full thrust, whatever the boat gains by it; at a
+    lower level (|level| / 5)^1.5 of it (a propeller's power goes about as thrust^1.5, momentum theory).
+    0 in the seed's reward (whose propeller terms price the motor only against progress)."""
 
     def __post_init__(self):
         owner = "RewardConfig"

@@ -53,6 +53,10 @@ class TaskParameters:
     proximity_cost: float
     proximity_range: float
     """[m]"""
+    energy_cost: float
+    """Per second at full thrust; (|level| / 5)^1.5 of it at a lower level."""
+    decision_period: float
+    """[s]"""
     max_episode_length: int
     """Decisions before a time-out."""
     observation_set: int
@@ -324,7 +328,8 @@ def evaluate(
         change = a - course.last_action[env, k]
         smooth += change * change
         course.last_action[env, k] = a
-    r = r - task.smoothness * smooth - task.time_cost
+    energy = task.energy_cost * task.decision_period * wp.pow(level / float(MAX_LEVEL), 1.5)
+    r = r - task.smoothness * smooth - task.time_cost - energy
 
     length = course.episode_length[env] + 1
     total = course.episode_return[env] + r

@@ -489,11 +489,11 @@ def test_the_proximity_cost_against_hand_computation(device, rng):
     counts it): each decision that ends unflagged and in no other way earns RewardConfig's progress term from
     the distances to the waypoint before and after (the level int(5 a0)), minus proximity_cost
     max(0, 1 - g / range) with g the gap from the boat's capsule to the nearest obstacle worked out from its
-    pose (``obstacle_gaps``), minus smoothness sum((a - a_prev)^2) and the time cost; ``env.clearance`` is that
-    g."""
+    pose (``obstacle_gaps``), minus smoothness sum((a - a_prev)^2), the time cost and the motor's energy
+    energy_cost (|level| / 5)^1.5 decision_period; ``env.clearance`` is that g."""
     reward = RewardConfig(proximity_cost=float(rng.uniform(0.5, 2.0)), proximity_range=30.0,
                           smoothness=float(rng.uniform(0.01, 0.1)), time_cost=float(rng.uniform(0.001, 0.01)),
-                          collision_penalty=2.0)
+                          collision_penalty=2.0, energy_cost=float(rng.uniform(0.01, 0.05)))
     obstacles = ObstacleLayoutConfig(count=(3, 4), pile_fraction=0.5, along_track=(0.1, 0.6), cross_track=5.0,
                                      start_clearance=4.0, waypoint_clearance=5.0, spacing=2.0)
     start = StartConfig(heading_deg=(-60.0, 60.0), heading_step_deg=0.0, heading_toward_waypoint=True,
@@ -523,7 +523,9 @@ def test_the_proximity_cost_against_hand_computation(device, rng):
         progress = np.where(progress > 0.0, progress * (1.0 - reward.propeller_gain * level / 5.0),
                             progress - reward.propeller_cost * level)
         proximity = reward.proximity_cost * np.maximum(1.0 - gaps / reward.proximity_range, 0.0)
-        expected = progress - proximity - reward.smoothness * np.sum((clipped - last) ** 2, axis=1) - reward.time_cost
+        energy = reward.energy_cost * task.decision_period * (level / 5.0) ** 1.5
+        expected = (progress - proximity - reward.smoothness * np.sum((clipped - last) ** 2, axis=1)
+                    - reward.time_cost - energy)
         np.testing.assert_allclose(b.reward.cpu().numpy()[sailing], expected[sailing], rtol=0, atol=2e-5)
         np.testing.assert_allclose(env.clearance.numpy()[sailing], np.minimum(gaps, reward.proximity_range)[sailing],
                                    atol=2e-4)
