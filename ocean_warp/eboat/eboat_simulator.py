@@ -205,6 +205,13 @@ class EBoatSimulator:
     def count(self) -> int:
         return self.fleet.count
 
+    def sail_scales(self) -> np.ndarray:
+        """(N,) float64: each boat's sail scale at its reef level now, the linear factor on the full sail about
+        its tack (``config.boat.reef_scales``; reads the device), for drawings."""
+        with ordered_with_torch(self.device):
+            levels = self.state.reef_level.numpy()
+        return np.asarray(self.config.boat.reef_scales, dtype=np.float64)[levels]
+
     @property
     def time(self) -> float:
         """Simulated time [s] (reads the device)."""
