@@ -11,10 +11,10 @@ reset): level k is the full sail scaled by a linear factor s = ``RigParameters.r
 (its foot at the mast), so its area is s^2 ``sail_area``, its centre of effort's height above the foot s
 times the full sail's and its arm aft of the mast s times ``sail_arm``, and the sail's share of the boom's
 inertia goes as its mass (s^2) times its arm squared (s^2); the coefficient tables stay (a scaled sail has the
-same aspect ratio), and level 0 (s = 1) is the full sail exactly. Each boat's ``foil_scale`` multiplies the lift and drag coefficients of its sail,
-keel and rudder (domain randomisation; the force is linear in them). A NaN or infinite command, or
-wind, flags the boat (BAD_INPUT and NONFINITE) instead of being clamped into a real value; so does a reef
-level outside the table (BAD_INPUT).
+same aspect ratio), and level 0 (s = 1) is the full sail exactly. Each boat's ``foil_scale`` multiplies the
+lift and drag coefficients of its sail, keel and rudder (domain randomisation; the force is linear in them).
+A NaN or infinite command, or wind, flags the boat (BAD_INPUT and NONFINITE) instead of being clamped into a
+real value; so does a reef level outside the table (BAD_INPUT).
 """
 
 from __future__ import annotations

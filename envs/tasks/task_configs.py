@@ -408,7 +408,8 @@ class WaypointPlusConfig(TaskConfig):
     """Ours: noisy-sensor observations with sin/cos angles, heel, yaw rate, actuator feedback and the last
     action; continuous randomisation of start, wind (2-12 m/s), gusts (0-1.5 x 1 m/s and 0.1 rad) and
     the waypoint (50-150 m, any bearing); a choppy sea; a 300 s time limit; a penalty on jerky actuation. The
-    sail is reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind, reef 1 to 8, reef 2 above), and the policy sees its level (16 values)."""
+    sail is reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind, reef 1 to 8, reef 2
+    above), and the policy sees its level (16 values)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
         boat=EBoatConfig(), ocean=waypoint_plus_sea(),
@@ -438,8 +439,9 @@ class MissionConfig(TaskConfig):
     broad reach to B, the E-Boat capsizes in 10 m/s before the sheet can ease). Observations and reward as the waypoint task's, toward the current waypoint;
     lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s. The boat is the physics
     profile's (``EBoatConfig()``: mesh hull, ITTC friction and residuary resistance, keel and rudder as
-    lifting surfaces), its sail reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind, reef 1 to 8, reef 2 above): reef 2 (1.15 m^2) in the mission's 10 m/s; the policy
-    sees its level (6 values)."""
+    lifting surfaces), its sail reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind,
+    reef 1 to 8, reef 2 above): reef 2 (1.15 m^2) in the mission's 10 m/s; the policy sees its level (6
+    values)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: mission_simulator(EBoatConfig()))
     episode_time: float = 1800.0
@@ -486,8 +488,9 @@ class AvoidConfig(TaskConfig):
     five values and the lidar's 24 sectors (15 deg each, nearest return / 50 m). The seed's reward, plus a
     collision penalty of 2 (the episode ends on a touch) and a proximity cost of up to 0.02 per decision
     within 5 m of an obstacle. Reached within 5 m; lost beyond the leg's length + 25 m; 400 s. The physics
-    profile's boat (mesh hull), its sail reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind, reef 1 to 8, reef 2 above): full or reef 1 in this task's winds; the policy
-    sees its level after the seed's five values and before the lidar's sectors (30 values)."""
+    profile's boat (mesh hull), its sail reefed by the default :class:`ReefRule` (full sail below 6 m/s of true
+    wind, reef 1 to 8, reef 2 above): full or reef 1 in this task's winds; the policy sees its level after the
+    seed's five values and before the lidar's sectors (30 values)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=avoid_simulator)
     episode_time: float = 400.0

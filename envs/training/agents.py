@@ -216,7 +216,8 @@ def _mission_sail() -> TrainConfig:
 
 def _avoid() -> TrainConfig:
     return TrainConfig(task="EBoatAvoid-v0", train_task=with_training_reef(AvoidConfig()), num_envs_cpu=256,
-                       num_envs_cuda=4096, steps_per_env=32, iterations=300, save_interval=50, ppo=PpoConfig(hidden_dims=(128, 128)))
+                       num_envs_cuda=4096, steps_per_env=32, iterations=300, save_interval=50,
+                       ppo=PpoConfig(hidden_dims=(128, 128)))
 
 
 def _avoid_sail() -> TrainConfig:

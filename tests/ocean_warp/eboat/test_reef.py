@@ -10,7 +10,7 @@ import pytest
 import ocean_warp as ow
 from ocean_warp.eboat import EBoat, EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, reefed_sail
 from ocean_warp.frames import roll_pitch_yaw
-from ocean_warp.stability import float_heeled, righting_arm_curve
+from ocean_warp.stability import float_heeled
 
 FULL_AREA = 3.188
 """The sheet's sail [m^2]."""
