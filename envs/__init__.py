@@ -28,15 +28,15 @@ _PUBLIC = {
     "SailingEnv": "sailing_env", "environment_origins": "sailing_env",
     **{name: "tasks.task_configs" for name in (
         "AvoidConfig", "AvoidSailConfig", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "MissionConfig", "MissionSailConfig",
-        "ObservationSet", "ObstacleLayoutConfig", "RewardConfig", "StartConfig", "TaskConfig", "WaypointConfig",
-        "WaypointPlusConfig")},
+        "ObservationSet", "ObstacleLayoutConfig", "ReefRule", "RewardConfig", "StartConfig", "TaskConfig",
+        "WaypointConfig", "WaypointPlusConfig")},
     "SailingEnvSingle": "interfaces.gym_env", "SailingVectorEnv": "interfaces.gym_env",
     "RslRlVecEnv": "interfaces.rsl_rl_env",
 }
 
 __all__ = ["BatchedEnv", "SailingEnv", "EnvBuffers", "environment_origins", "TaskConfig", "WaypointConfig",
            "WaypointPlusConfig", "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig",
-           "ObstacleLayoutConfig", "StartConfig", "RewardConfig", "ObservationSet", "BCDACA_ROUTE",
+           "ObstacleLayoutConfig", "StartConfig", "RewardConfig", "ReefRule", "ObservationSet", "BCDACA_ROUTE",
            "MISSION_WAYPOINTS", "RslRlVecEnv", "SailingVectorEnv", "SailingEnvSingle", "TASK_IDS",
            "make_task_config", "register_envs"]
 

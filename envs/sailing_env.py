@@ -36,6 +36,7 @@ from .tasks.task_kernels import (
     draw_starts,
     evaluate,
     observe,
+    policy_observation_count,
 )
 from .decision_hook import DecisionHook, HookChain
 from .protocol import EnvBuffers, episode_log
@@ -87,14 +88,15 @@ class SailingEnv:
         self.simulator = EBoatSimulator(task.simulator, self.num_envs, device=device, first_boat=self.first_env)
         self.device = self.simulator.device
         self.torch_device = torch.device(wp.device_to_torch(self.device))
-        observation_set_size = POLICY_OBS[ObservationSet(task.observation).value]
-        self.num_policy_obs = observation_set_size + task.lidar_observations
+        # The policy sees its observation set's values, its reef level (a task with a reef rule), its lidar's sectors.
+        lidar_column = POLICY_OBS[ObservationSet(task.observation).value] + task.reef_observations
+        self.num_policy_obs = policy_observation_count(task)
         self.num_critic_obs = self.num_policy_obs + PRIVILEGED_OBS
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period
         self.steps_per_decision = task.steps_per_decision
         self.parameters = _task_parameters(task)
-        self.start_distribution = _start_distribution(task, self._start_height())
+        self.start_distribution = _start_distribution(task, self._start_height(), self.device)
 
         n, device = self.num_envs, self.device
         zeros = lambda shape, dtype=float: wp.zeros(shape, dtype=dtype, device=device)  # noqa: E731
@@ -144,7 +146,7 @@ class SailingEnv:
         if task.obstacles is not None or task.lidar is not None or task.contact is not None:
             from .tasks.obstacle_course import ObstacleCourse  # deferred: it imports the sensors, which import this
 
-            self.obstacles = ObstacleCourse(self, self.clearance, observation_set_size)
+            self.obstacles = ObstacleCourse(self, self.clearance, lidar_column)
 
         self._course = struct_from(Course, self)
         """The task's per-environment arrays, grouped as the kernels take them."""
@@ -332,10 +334,11 @@ class SailingEnv:
 def _task_parameters(task: TaskConfig) -> TaskParameters:
     return struct_from(TaskParameters, task, task.reward,
                        observation_set=0 if ObservationSet(task.observation) is ObservationSet.SEED else 1,
-                       sail_only=int(not task.propeller))
+                       sail_only=int(not task.propeller), reef_observation=task.reef_observations,
+                       reef_levels=task.simulator.boat.reef_levels)
 
 
-def _start_distribution(task: TaskConfig, start_height: float) -> StartDistribution:
+def _start_distribution(task: TaskConfig, start_height: float, device) -> StartDistribution:
     s, d = task.start, StartDistribution()
     rad = math.radians
     d.heading_low, d.heading_high = rad(s.heading_deg[0]), rad(s.heading_deg[1])
@@ -364,4 +367,12 @@ def _start_distribution(task: TaskConfig, start_height: float) -> StartDistribut
         d.current_speed_low, d.current_speed_high = s.current_speed
         d.current_direction_low = rad(s.current_direction_deg[0])
         d.current_direction_high = rad(s.current_direction_deg[1])
+    reef = task.reef
+    d.reef_rule = int(reef is not None)
+    thresholds = () if reef is None else reef.thresholds
+    d.reef_thresholds = wp.array(np.array(thresholds or (0.0,), dtype=np.float32), dtype=float, device=device)
+    d.reef_threshold_count = len(thresholds)
+    d.reef_fixed_level = -1 if reef is None or reef.level is None else reef.level
+    d.reef_random = 0.0 if reef is None else reef.random_level
+    d.reef_levels = task.simulator.boat.reef_levels
     return d

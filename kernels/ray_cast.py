@@ -2,8 +2,9 @@
 
 A ray is cast in one environment: it sees that environment's objects (spheres and vertical cylinders,
 analytic; any other shape as a Warp mesh with its BVH, ``wp.mesh_query_ray``), the boats of that
-environment (the hull, keel and mast as one mesh in the body frame; the boom and sail as one mesh in
-the boom's pivot frame, turned by the boom angle) except the one the sensor rides on, and the sea.
+environment (the hull, keel and mast as one mesh in the body frame; the boom's spar in the boom's pivot
+frame, turned by the boom angle; the sail in its tack's frame on the boom, scaled about the tack by the boat's
+reef) except the one the sensor rides on, and the sea.
 
 The sea is a height map: the surface height above every node of the ocean's periodic grid, resampled
 when the scene is refreshed (:func:`resample_heights`; exactly the ocean's surface at the nodes, its
@@ -78,12 +79,20 @@ class SceneView:
     boat_orientation: wp.array(dtype=wp.quat)
     boom_angle: wp.array(dtype=float)
     """[rad], positive to port: the boom mesh turns by -boom about the pivot's z axis."""
+    reef_level: wp.array(dtype=int)
+    """Each boat's reef level, an index into ``reef_scale``."""
+    reef_scale: wp.array(dtype=float)
+    """(levels,) the linear factor on the sail about its tack of each reef level (level 0: 1)."""
     body_mesh: wp.uint64
     """Hull, keel and mast in the body frame."""
     boom_mesh: wp.uint64
-    """Spar and sail in the boom's pivot frame."""
+    """The boom's spar in its pivot frame."""
+    sail_mesh: wp.uint64
+    """The full sail with its tack at the origin, in the boom pivot's axes."""
     boom_pivot: wp.vec3
     """Boom pivot in the body frame [m]."""
+    sail_tack: wp.vec3
+    """The sail's tack in the boom's pivot frame [m]."""
     boat_bound: float
     """Radius of a sphere about the body origin that holds the whole boat, boom swung included [m]."""
 
@@ -97,7 +106,7 @@ class RayHit:
     index: int
     """The object's or the boat's index (-1 for the water or nothing)."""
     part: int
-    """Of a boat: 0 the hull, keel and mast, 1 the boom and sail."""
+    """Of a boat: 0 the hull, keel and mast, 1 the boom or the sail."""
     normal: wp.vec3
     """Unit normal of the surface hit, world frame, facing the ray."""
 
@@ -197,6 +206,22 @@ def _mesh_in_frame(mesh: wp.uint64, position: wp.vec3, orientation: wp.quat, ori
     if query.result:
         normal = wp.quat_rotate(orientation, query.normal)
         return wp.vec4(query.t, normal[0], normal[1], normal[2])
+    return wp.vec4(-1.0, 0.0, 0.0, 0.0)
+
+
+@wp.func
+def _scaled_mesh_in_frame(mesh: wp.uint64, position: wp.vec3, orientation: wp.quat, scale: float, origin: wp.vec3,
+                          direction: wp.vec3, t_max: float) -> wp.vec4:
+    """(t, world normal) of the unit ray against ``mesh`` scaled by ``scale`` > 0 about its frame's origin and
+    posed at (position, orientation); t = -1 on a miss. In the unscaled frame the ray runs from (origin -
+    position) / scale along the same unit direction, t / scale for t along the world ray; a uniform scale keeps
+    the normals."""
+    local_origin = wp.quat_rotate_inv(orientation, origin - position) / scale
+    local_direction = wp.quat_rotate_inv(orientation, direction)
+    query = wp.mesh_query_ray(mesh, local_origin, local_direction, t_max / scale)
+    if query.result:
+        normal = wp.quat_rotate(orientation, query.normal)
+        return wp.vec4(scale * query.t, normal[0], normal[1], normal[2])
     return wp.vec4(-1.0, 0.0, 0.0, 0.0)
 
 
@@ -391,6 +416,10 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
         pivot = position + wp.quat_rotate(rotation, scene.boom_pivot)
         hit = _nearer(hit, _mesh_in_frame(scene.boom_mesh, pivot, boom, origin, direction, hit.t), t_min,
                       HIT_BOAT, boat, 1)
+        tack = pivot + wp.quat_rotate(boom, scene.sail_tack)
+        reef = wp.clamp(scene.reef_level[boat], 0, scene.reef_scale.shape[0] - 1)
+        hit = _nearer(hit, _scaled_mesh_in_frame(scene.sail_mesh, tack, boom, scene.reef_scale[reef], origin,
+                                                 direction, hit.t), t_min, HIT_BOAT, boat, 1)
     if scene.water_visible != 0:
         t = water_distance(scene.heights, scene.surface, scene.water_band, origin, direction, t_min, hit.t)
         if t >= 0.0 and (t < hit.t or hit.kind == HIT_NONE):

@@ -6,9 +6,15 @@ positive with its trailing edge to port, which turns a boat going ahead to port 
 boom swings free within +-(sheet limit), driven by the sail's moment about the mast against the
 joint's damping, and stops dead at the limit; the sail's flow includes the boom's own swing, which
 damps it aerodynamically. The rudder and the sheet limit move towards their commands at fixed rates
-within their ranges. Each boat's ``foil_scale`` multiplies the lift and drag coefficients of its sail,
-keel and rudder (domain randomisation; the force is linear in them). A NaN or infinite command, or
-wind, flags the boat (BAD_INPUT and NONFINITE) instead of being clamped into a real value.
+within their ranges. Each boat sails its rig at a reef level of its own (``RigState.reef_level``, set at a
+reset): level k is the full sail scaled by a linear factor s = ``RigParameters.reef_scale[k]`` about its tack
+(its foot at the mast), so its area is s^2 ``sail_area``, its centre of effort's height above the foot s
+times the full sail's and its arm aft of the mast s times ``sail_arm``, and the sail's share of the boom's
+inertia goes as its mass (s^2) times its arm squared (s^2); the coefficient tables stay (a scaled sail has the
+same aspect ratio), and level 0 (s = 1) is the full sail exactly. Each boat's ``foil_scale`` multiplies the
+lift and drag coefficients of its sail, keel and rudder (domain randomisation; the force is linear in them).
+A NaN or infinite command, or wind, flags the boat (BAD_INPUT and NONFINITE) instead of being clamped into a
+real value; so does a reef level outside the table (BAD_INPUT).
 """
 
 from __future__ import annotations
@@ -35,7 +41,13 @@ class RigParameters:
     sail_height: float
     """Height of the sail's centre of effort [m]."""
     sail_area: float
-    """[m^2]"""
+    """Of the full sail [m^2]."""
+    sail_foot_height: float
+    """Height of the sail's foot (its tack, on the boom), about which a reef scales the sail [m]."""
+    reef_scale: wp.array(dtype=float)
+    """(levels,) linear factor s of each reef level's sail on the full sail's dimensions (level 0: 1)."""
+    sail_inertia: float
+    """The sail's share of ``boom_inertia`` [kg m^2] (a reef scales it by s^4)."""
     keel_center: wp.vec3
     """Centre of effort of the keel fin [m]."""
     keel_area: float
@@ -61,7 +73,7 @@ class RigParameters:
     sheet_rate: float
     """[rad/s]"""
     boom_inertia: float
-    """Boom and sail about the mast [kg m^2]."""
+    """Boom and full sail about the mast [kg m^2]."""
     boom_damping: float
     """[N m s/rad]"""
     air_density: float
@@ -109,6 +121,8 @@ class RigState:
     """[rad/s]"""
     foil_scale: wp.array(dtype=wp.vec3)
     """Factors on the lift and drag coefficients of the (sail, keel, rudder) (1: as tabulated)."""
+    reef_level: wp.array(dtype=int)
+    """Reef level of the sail, an index into ``RigParameters.reef_scale`` (0: the full sail)."""
 
 
 @wp.struct
@@ -154,11 +168,16 @@ def sailing_rig(
 ):
     """One substep of ``dt`` [s]: actuators and boom move, and the sail, keel, rudder and propeller
     wrenches are added to ``model_wrench``. Commands: rudder and sheet angles [rad], propeller level.
-    ``foil_scale``: factors on the (sail, keel, rudder) lift and drag coefficients."""
+    ``foil_scale``: factors on the (sail, keel, rudder) lift and drag coefficients; ``reef_level``: the sail's
+    reef (module docstring)."""
     boat = wp.tid()
     if not (wp.isfinite(control.rudder[boat]) and wp.isfinite(control.sheet[boat])
             and wp.isfinite(around.wind_velocity[boat])):
         status[boat] = status[boat] | STATUS_BAD_INPUT | STATUS_NONFINITE
+        return
+    reef = state.reef_level[boat]
+    if reef < 0 or reef >= rig.reef_scale.shape[0]:
+        status[boat] = status[boat] | STATUS_BAD_INPUT
         return
     rotation = around.orientation[boat]
     nu = around.velocity[boat]
@@ -173,16 +192,24 @@ def sailing_rig(
     state.rudder_angle[boat] = rudder
     state.sheet_limit[boat] = limit
 
+    # The reefed sail: the full one scaled by s about its tack. Written so that s = 1 gives the full sail's
+    # figures bit for bit (foot + s (h - foot) would round differently).
+    s = rig.reef_scale[reef]
+    sail_arm = s * rig.sail_arm
+    sail_height = rig.sail_height - (1.0 - s) * (rig.sail_height - rig.sail_foot_height)
+    sail_area = (s * s) * rig.sail_area
+    boom_inertia = rig.boom_inertia + rig.sail_inertia * (s * s * s * s - 1.0)
+
     # Sail: apparent wind at the centre of effort, which swings with the boom.
     boom = state.boom_angle[boat]
     swing = state.boom_rate[boat]
     boom_direction = wp.vec3(-wp.cos(boom), wp.sin(boom), 0.0)
-    sail_center = wp.vec3(rig.mast_step[0], rig.mast_step[1], rig.sail_height) + rig.sail_arm * boom_direction
+    sail_center = wp.vec3(rig.mast_step[0], rig.mast_step[1], sail_height) + sail_arm * boom_direction
     sail_world = around.position[boat] + wp.quat_rotate(rotation, sail_center)
     wind = wp.quat_rotate_inv(rotation, wind_at_height(around.wind_velocity[boat], sail_world[2], gusts))
-    swing_velocity = (rig.sail_arm * swing) * wp.vec3(wp.sin(boom), wp.cos(boom), 0.0)
+    swing_velocity = (sail_arm * swing) * wp.vec3(wp.sin(boom), wp.cos(boom), 0.0)
     sail_flow = wind - (point_velocity(nu, sail_center) + swing_velocity)
-    sail = foil_force(sail_flow, boom_direction, up, rig.sail_area, rig.air_density, tables.sail_lift,
+    sail = foil_force(sail_flow, boom_direction, up, sail_area, rig.air_density, tables.sail_lift,
                       tables.sail_drag, rig.sail_lift_limit)
     sail_force = scale[0] * _force(sail)
     if rig.original_tuning != 0:
@@ -192,8 +219,8 @@ def sailing_rig(
 
     # Boom: free within the sheet limit, driven by the sail's moment about the mast. A positive boom
     # angle turns the boom clockwise seen from above (towards port, aft of the mast): about -z.
-    about_mast = -wp.dot(wp.cross(rig.sail_arm * boom_direction, sail_force), up)
-    rate = (swing * rig.boom_inertia + dt * about_mast) / (rig.boom_inertia + dt * rig.boom_damping)
+    about_mast = -wp.dot(wp.cross(sail_arm * boom_direction, sail_force), up)
+    rate = (swing * boom_inertia + dt * about_mast) / (boom_inertia + dt * rig.boom_damping)
     new_boom = boom + dt * rate
     if new_boom > limit:
         new_boom = limit
@@ -248,13 +275,15 @@ def reset_rig(
     mask: wp.array(dtype=wp.int32),
     sheet: wp.array(dtype=float),
     new_foil_scale: wp.array(dtype=wp.vec3),
+    new_reef_level: wp.array(dtype=int),
     sheet_limit_max: float,
     control: RigControl,
     state: RigState,
 ):
     """For every boat whose ``mask`` is non-zero: centre the rudder and the boom, stop the propeller, set
-    the sheet, command and actual boom limit alike, to ``sheet`` [rad] (clamped to [0, max]), and the
-    foil factors to ``new_foil_scale`` (may be ``foil_scale`` itself, to keep them)."""
+    the sheet, command and actual boom limit alike, to ``sheet`` [rad] (clamped to [0, max]), the foil
+    factors to ``new_foil_scale`` and the reef level to ``new_reef_level`` (either may be the state's own
+    array, to keep it)."""
     boat = wp.tid()
     if mask[boat] == 0:
         return
@@ -267,3 +296,4 @@ def reset_rig(
     state.boom_angle[boat] = 0.0
     state.boom_rate[boat] = 0.0
     state.foil_scale[boat] = new_foil_scale[boat]
+    state.reef_level[boat] = new_reef_level[boat]

@@ -61,7 +61,8 @@ def rig_part_wrenches(sim: EBoatSimulator) -> dict[str, np.ndarray]:
         state = struct_from(RigState, rudder_angle=wp.clone(rig.state.rudder_angle),
                             sheet_limit=wp.clone(rig.state.sheet_limit), boom_angle=wp.clone(rig.state.boom_angle),
                             boom_rate=wp.clone(rig.state.boom_rate),
-                            foil_scale=wp.full(sim.count, wp.vec3(*factors), dtype=wp.vec3, device=device))
+                            foil_scale=wp.full(sim.count, wp.vec3(*factors), dtype=wp.vec3, device=device),
+                            reef_level=wp.clone(rig.state.reef_level))
         out = wp.zeros(sim.count, dtype=wp.types.vector(6, float), device=device)
         status = wp.zeros(sim.count, dtype=int, device=device)
         wp.launch(sailing_rig, dim=sim.count, device=device,

@@ -103,6 +103,8 @@ class MissionStageRecorder:
             objects=objects, object_labels=labels or None, **options)
         self._held = np.zeros(env.num_envs, dtype=bool)
         self._held_frame: dict[str, np.ndarray] = {}
+        self._sail_scales = env.simulator.sail_scales()
+        """Each boat's sail at its first episode's reef (drawn at the env's reset, as the stage's episodes)."""
 
     @property
     def object_count(self) -> int:
@@ -128,7 +130,7 @@ class MissionStageRecorder:
             poses = (frames["object_position"][f], frames["object_orientation"][f]) if self.object_count else None
             self.recorder.record(time_s - period + (f + 1) * period / count, frames["position"][f],
                                  frames["orientation"][f], frames["boom_angle"][f], frames["rudder_angle"][f],
-                                 object_poses=poses)
+                                 object_poses=poses, sail_scales=self._sail_scales)
         ended = self.env.done.numpy().astype(bool) & ~self._held
         if ended.any():
             names = BOAT_FRAMES + (("object_position", "object_orientation") if self.object_count else ())

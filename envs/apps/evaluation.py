@@ -155,12 +155,13 @@ class Controller(Protocol):
 
 
 def observation_text(observation: str, num_obs: int) -> str:
-    """An observation in words: "5 values (the 'seed' set)", "29 values (the 'seed' set's 5 and 24 lidar
-    sectors)": the set's values, then what a task appends (its lidar's sectors: ``SailingEnv``)."""
+    """An observation in words: "5 values (the 'seed' set)", "30 values (the 'seed' set's 5 and 25 the task
+    appends)": the set's values, then what a task appends (its reef level, its lidar's sectors: ``SailingEnv``)."""
     base = POLICY_OBS.get(str(observation))
     if base is None or num_obs == base:
         return f"{num_obs} values (the {observation!r} set)"
-    return f"{num_obs} values (the {observation!r} set's {base} and {num_obs - base} lidar sectors)"
+    return (f"{num_obs} values (the {observation!r} set's {base} and {num_obs - base} the task appends: reef level, "
+            "lidar sectors)")
 
 
 def observation_mismatch(policy: Policy, observation, num_obs: int) -> str | None:
@@ -649,17 +650,23 @@ def _replace_given(config, **fields):
 
 def evaluation_task(task: TaskConfig | str = DEFAULT_TASK, *, sea_state: float | None = None,
                     wind: float | None = None, seed: int = 0, time_limit: float | None = None,
-                    observation: ObservationSet | str | None = None) -> TaskConfig:
+                    observation: ObservationSet | str | None = None, reef: int | None = None) -> TaskConfig:
     """``task`` (a config, or a registered task id with or without "ocean_warp/") as ``ocean-warp eval``
     sails it: the sea's significant height ``sea_state`` [m] (None: the task's) and its seed ``seed``; the
     mean true wind ``wind`` [m/s] (None: the task's), which also fixes every start's wind speed (tasks that
     draw it from a range, as the waypoint tasks do, then sail every run at ``wind``); the time limit
-    ``time_limit`` [s] (None: the task's); the policy's ``observation`` set (None: the task's). Gusts, wind
-    directions and the rest of the start stay the task's. Invalid values raise the configs' ``ValueError``
-    (an unknown id: one naming the known ones)."""
+    ``time_limit`` [s] (None: the task's); the policy's ``observation`` set (None: the task's); ``reef``, one
+    reef level for every run (None: the task's rule, ``TaskConfig.reef``; a task without a rule takes None
+    only). Gusts, wind directions and the rest of the start stay the task's. Invalid values raise the configs'
+    ``ValueError`` (an unknown id: one naming the known ones)."""
     task = make_task_config(task) if isinstance(task, str) else task
     if not isinstance(task, TaskConfig):
         raise ValueError(f"evaluation_task: task must be a TaskConfig or a task id, got {task!r}")
+    if reef is not None:
+        if task.reef is None:
+            raise ValueError(f"evaluation_task: reef {reef!r} given, but {type(task).__name__} sails without a reef "
+                             "rule (the full sail always); leave reef None")
+        task = dataclasses.replace(task, reef=dataclasses.replace(task.reef, level=reef, random_level=0.0))
     simulator = dataclasses.replace(
         task.simulator, ocean=_replace_given(task.simulator.ocean, significant_wave_height=sea_state, seed=seed),
         wind=_replace_given(task.simulator.wind, speed=wind))
@@ -841,7 +848,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
                      wind: float | None = None, seed: int = 0, device="cpu", time_limit: float | None = None,
                      autopilot: bool | AutopilotConfig = True, progress: bool = True, *,
                      task: TaskConfig | str | None = None,
-                     record: str | os.PathLike | None = None) -> MissionEvaluation:
+                     record: str | os.PathLike | None = None, reef: int | None = None) -> MissionEvaluation:
     """Sail a task's runs (default the mission, EBoatMission-v0) ``runs`` times with ``policy`` (a Policy, a
     checkpoint path, or None for none) and with the classical autopilot (``autopilot``: True for its
     defaults, an AutopilotConfig, or False for none; without the motor on a task without propeller), all on
@@ -862,6 +869,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
             runs, each under its own namespace (``/<controller>/eboat_<run>``, ``/<controller>/eboat`` for
             one run), from their start to the end of the controller's last decision, once per decision
             (``ocean_warp.ros.mcap_log``; None: no log).
+        reef: one reef level for every run (``evaluation_task``); None: the task's rule.
 
     Raises:
         ValueError: a bad setting, an unknown task id or nothing to evaluate; CheckpointError: an unusable
@@ -886,7 +894,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
         raise ValueError("evaluate_mission: nothing to evaluate (no policy and autopilot=False)")
     task = DEFAULT_TASK if task is None else task
     config = evaluation_task(task, sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
-                             observation=None if policy is None else policy.observation)
+                             observation=None if policy is None else policy.observation, reef=reef)
     env = SailingEnv(config, int(runs), device=device, seed=seed)
     log = None
     if record is not None:
@@ -996,8 +1004,9 @@ def main(argv=None) -> int:
         fail(parser, f"--task: {error}")
     device = checked_device(parser, args.device)
     try:
+        reef = None if args.reef == "auto" else int(args.reef)
         task = evaluation_task(name, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
-                               time_limit=args.time_limit)
+                               time_limit=args.time_limit, reef=reef)
     except ValueError as error:
         fail(parser, str(error))
     print(f"{name} ({_course_text(task)}): {plural(args.runs, 'run')} per controller, "
@@ -1006,7 +1015,7 @@ def main(argv=None) -> int:
     try:
         evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
                                       device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,
-                                      progress=not args.no_progress, task=name, record=args.record)
+                                      progress=not args.no_progress, task=name, record=args.record, reef=reef)
     except ValueError as error:  # a policy whose observation the task cannot give
         fail(parser, str(error))
     paths = evaluation.write(args.out)

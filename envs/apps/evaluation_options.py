@@ -38,6 +38,11 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument("--wind", type=float, default=None,
                         help="mean true wind speed of every run [m/s] (default: the task's, 10 for the missions; "
                              "the waypoint tasks draw it per run from their range unless this fixes it)")
+    parser.add_argument("--reef", default="auto", choices=("auto", "0", "1", "2"),
+                        help="the sail's reef level in every run: auto (default) chooses it per run by the task's "
+                             "rule from the run's true wind (full below 6 m/s, reef 1 to 8, reef 2 above); 0 (the "
+                             "full sail), 1 (about 2.0 m2) or 2 (about 1.15 m2) sets it. Not on EBoatWaypoint-v0, "
+                             "which sails the full sail as the seed did")
     parser.add_argument("--seed", type=int, default=0,
                         help="seed of the sea, the gusts, the starts and the waypoints (default 0)")
     parser.add_argument("--time-limit", type=float, default=None, metavar="SECONDS",

@@ -49,8 +49,8 @@ from ocean_warp.devices import init_warp
 from ..protocol import EnvBuffers, episode_log
 from ..sailing_env import SailingEnv
 from .shared_ocean import SharedOcean, ocean_updates_per_decision
-from ..tasks.task_kernels import POLICY_OBS, PRIVILEGED_OBS
-from ..tasks.task_configs import ObservationSet, TaskConfig
+from ..tasks.task_kernels import PRIVILEGED_OBS, policy_observation_count
+from ..tasks.task_configs import TaskConfig
 
 __all__ = ["ShardedSailingEnv", "shard_bounds"]
 
@@ -72,7 +72,7 @@ def shard_bounds(num_envs: int, workers: int) -> list[tuple[int, int]]:
 
 def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.dtype]]:
     """Per-environment shape and dtype of every :class:`EnvBuffers` field for ``task``."""
-    p = POLICY_OBS[ObservationSet(task.observation).value] + task.lidar_observations
+    p = policy_observation_count(task)
     c = p + PRIVILEGED_OBS
     f32, i32 = torch.float32, torch.int32
     return {"actions": ((3,), f32), "policy_obs": ((p,), f32), "critic_obs": ((c,), f32),
@@ -314,7 +314,7 @@ class ShardedSailingEnv:
             raise ValueError(f"ShardedSailingEnv.timeout must be a positive number of seconds, got {timeout!r}")
         self.timeout = float(timeout)
         self.task = task
-        self.num_policy_obs = POLICY_OBS[ObservationSet(task.observation).value] + task.lidar_observations
+        self.num_policy_obs = policy_observation_count(task)
         self.num_critic_obs = self.num_policy_obs + PRIVILEGED_OBS
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period

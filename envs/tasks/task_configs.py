@@ -38,8 +38,9 @@ from ocean_warp.wind import WindConfig
 
 from .obstacle_layout import ObstacleLayoutConfig
 
-__all__ = ["ObservationSet", "StartConfig", "RewardConfig", "TaskConfig", "WaypointConfig", "WaypointPlusConfig",
-           "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig", "ObstacleLayoutConfig",
+__all__ = ["ObservationSet", "StartConfig", "RewardConfig", "ReefRule", "TaskConfig", "WaypointConfig",
+           "WaypointPlusConfig", "MissionConfig", "MissionSailConfig", "AvoidConfig", "AvoidSailConfig",
+           "ObstacleLayoutConfig",
            "avoid_lidar", "BCDACA_ROUTE", "MISSION_WAYPOINTS", "mission_waypoint_name",
            "mission_sea", "mission_simulator", "waypoint_plus_sea"]
 
@@ -189,6 +190,58 @@ class RewardConfig:
                                                                           getattr(self, field.name)))
 
 
+@dataclasses.dataclass(frozen=True)
+class ReefRule:
+    """How each episode's reef level is chosen, as a crew sets the rig for the forecast: by the episode's
+    drawn mean true wind speed (before gusts), at its start, from a random stream of its own. Level k sails
+    the boat's sail ``EBoatConfig.sail_areas[k]`` (the E-Boat: 3.188, about 2.0 and 1.15 m^2), and the policy
+    of a task with a rule sees it (one value, level / (levels - 1), after the observation set's)."""
+
+    thresholds: tuple[float, ...] = (6.0, 8.0)
+    """True wind speeds [m/s] at which the rule reefs one level deeper, increasing: the default sails the full
+    sail below 6 m/s, reef 1 from 6 to 8 and reef 2 from 8 (a speed on a threshold takes the deeper reef).
+    At most one fewer than the boat's levels."""
+    level: int | None = None
+    """A fixed reef level for every episode in place of the rule (None: the rule)."""
+    random_level: float = 0.0
+    """Probability (0 to 1) that an episode's level is drawn uniformly from the boat's levels instead of the
+    rule's (or ``level``'s): domain randomisation for training (0: never)."""
+
+    def __post_init__(self):
+        owner = "ReefRule"
+        try:
+            thresholds = tuple(float(t) for t in self.thresholds)
+        except (TypeError, ValueError):
+            raise ValueError(f"{owner}.thresholds must be a sequence of true wind speeds [m/s], got "
+                             f"{self.thresholds!r}") from None
+        if not all(math.isfinite(t) and t >= 0.0 for t in thresholds):
+            raise ValueError(f"{owner}.thresholds must be finite wind speeds >= 0 [m/s], got {self.thresholds!r}")
+        if any(b <= a for a, b in zip(thresholds, thresholds[1:])):
+            raise ValueError(f"{owner}.thresholds must increase, got {self.thresholds!r}")
+        object.__setattr__(self, "thresholds", thresholds)
+        if self.level is not None and (isinstance(self.level, bool) or not isinstance(self.level, int)
+                                       or self.level < 0):
+            raise ValueError(f"{owner}.level must be None or a reef level >= 0, got {self.level!r}")
+        object.__setattr__(self, "random_level", require_in_range(owner, "random_level", self.random_level, 0.0, 1.0))
+
+    def level_for(self, wind_speed: float) -> int:
+        """The rule's level at a mean true wind of ``wind_speed`` [m/s] (``level`` where fixed; not the random
+        draw): the number of thresholds at or below it."""
+        if self.level is not None:
+            return self.level
+        return sum(1 for t in self.thresholds if t <= wind_speed)
+
+    def require_levels(self, owner: str, levels: int) -> None:
+        """``ValueError`` naming the field unless this rule fits a boat of ``levels`` reef levels."""
+        if len(self.thresholds) > levels - 1:
+            raise ValueError(f"{owner}.reef: ReefRule.thresholds {self.thresholds} reef {len(self.thresholds)} "
+                             f"levels deep; the boat has {levels - 1} reef levels after its full sail "
+                             "(EBoatConfig.reef_areas)")
+        if self.level is not None and self.level >= levels:
+            raise ValueError(f"{owner}.reef: ReefRule.level {self.level} is outside the boat's reef levels "
+                             f"0-{levels - 1}")
+
+
 FRESH_WATER = WaterConfig(density=997.0)
 """The Gazebo twin's water (the seed's tasks); every other task sails sea water."""
 
@@ -253,6 +306,10 @@ class TaskConfig:
     set's: the nearest return of each sector over the lidar's max range, in [0, 1] (None: no lidar)."""
     lidar_sectors: int = 24
     """Equal sectors the lidar's beams are pooled into (a whole divisor of its beams per channel)."""
+    reef: ReefRule | None = dataclasses.field(default_factory=ReefRule)
+    """How each episode's reef level is chosen (:class:`ReefRule`); the policy sees the level (one value after
+    the observation set's, before the lidar's). None: the full sail always, and no such value (the seed's
+    waypoint task, as published)."""
 
     def __post_init__(self):
         owner = type(self).__name__
@@ -294,6 +351,10 @@ class TaskConfig:
         if self.obstacles is not None and self.contact is None:
             raise ValueError(f"{owner}.contact must be a ContactConfig when obstacles are drawn (else nothing "
                              "detects a collision), got None")
+        if self.reef is not None:
+            if not isinstance(self.reef, ReefRule):
+                raise ValueError(f"{owner}.reef must be a ReefRule or None, got {self.reef!r}")
+            self.reef.require_levels(owner, self.simulator.boat.reef_levels)
         if self.lidar is not None:
             beams = self.lidar.beams
             sectors = self.lidar_sectors
@@ -316,6 +377,11 @@ class TaskConfig:
         return 1 if self.route is None else len(self.route)
 
     @property
+    def reef_observations(self) -> int:
+        """Values of the policy's observation that give the reef level: 1 with a ``reef`` rule, else 0."""
+        return 0 if self.reef is None else 1
+
+    @property
     def lidar_observations(self) -> int:
         """Values of the policy's observation that come from the lidar (after the observation set's)."""
         return 0 if self.lidar is None else self.lidar_sectors
@@ -333,18 +399,22 @@ class WaypointConfig(TaskConfig):
     (5), the seed's reward; reached within 5 m, lost beyond 125 m. The boat floats on the original
     twin's four-point buoyancy in fresh water (997 kg/m^3), as in Gazebo, and the sea is evaluated once
     per 0.05 s step (its waves are 3 s long): about 30 times cheaper than the mesh hull, which is what
-    lets this task train on a laptop's CPU. The seed gave no time limit; ours is 600 s."""
+    lets this task train on a laptop's CPU. The seed gave no time limit; ours is 600 s. No reef rule: the
+    full sail in every wind, as published (``reef`` None)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
         boat=EBoatConfig(profile=Profile.SEED), ocean=dataclasses.replace(_seed_sea(), water=FRESH_WATER),
         sensors=SensorConfig.noise_free(), ocean_every_substep=False))
+    reef: ReefRule | None = None
 
 
 @dataclasses.dataclass(frozen=True)
 class WaypointPlusConfig(TaskConfig):
     """Ours: noisy-sensor observations with sin/cos angles, heel, yaw rate, actuator feedback and the last
     action; continuous randomisation of start, wind (2-12 m/s), gusts (0-1.5 x 1 m/s and 0.1 rad) and
-    the waypoint (50-150 m, any bearing); a choppy sea; a 300 s time limit; a penalty on jerky actuation."""
+    the waypoint (50-150 m, any bearing); a choppy sea; a 300 s time limit; a penalty on jerky actuation. The
+    sail is reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind, reef 1 to 8, reef 2
+    above), and the policy sees its level (16 values)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: EBoatSimulatorConfig(
         boat=EBoatConfig(), ocean=waypoint_plus_sea(),
@@ -374,7 +444,9 @@ class MissionConfig(TaskConfig):
     broad reach to B, the E-Boat capsizes in 10 m/s before the sheet can ease). Observations and reward as the waypoint task's, toward the current waypoint;
     lost beyond the leg's length + 25 m; ends at the last waypoint or after 1800 s. The boat is the physics
     profile's (``EBoatConfig()``: mesh hull, ITTC friction and residuary resistance, keel and rudder as
-    lifting surfaces)."""
+    lifting surfaces), its sail reefed by the default :class:`ReefRule` (full sail below 6 m/s of true wind,
+    reef 1 to 8, reef 2 above): reef 2 (1.15 m^2) in the mission's 10 m/s; the policy sees its level (6
+    values)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=lambda: mission_simulator(EBoatConfig()))
     episode_time: float = 1800.0
@@ -391,7 +463,8 @@ class MissionSailConfig(MissionConfig):
     decision) and the ``plus`` observation: under sail alone the policy must see its heel, yaw rate, boom
     and rudder, which the seed's five values lack (trained the same 8 minutes on an H100, the seed's
     observation completes 0 of 20 missions in 10 m/s, this one 6-9 of 20 and 18-19 of 20 in 7 m/s;
-    ``benchmarks/RESULTS.md``, "Sailing fidelity"). Its shipped policy is ``eboat_mission_sail.pt``."""
+    ``benchmarks/RESULTS.md``, "Sailing fidelity"; before the reef). The reef rule is the mission's (reef 2 in
+    10 m/s; the policy sees its level: 16 values). Its shipped policy is ``eboat_mission_sail.pt``."""
 
     propeller: bool = False
     observation: ObservationSet | str = ObservationSet.PLUS
@@ -420,7 +493,9 @@ class AvoidConfig(TaskConfig):
     five values and the lidar's 24 sectors (15 deg each, nearest return / 50 m). The seed's reward, plus a
     collision penalty of 2 (the episode ends on a touch) and a proximity cost of up to 0.02 per decision
     within 5 m of an obstacle. Reached within 5 m; lost beyond the leg's length + 25 m; 400 s. The physics
-    profile's boat (mesh hull)."""
+    profile's boat (mesh hull), its sail reefed by the default :class:`ReefRule` (full sail below 6 m/s of true
+    wind, reef 1 to 8, reef 2 above): full or reef 1 in this task's winds; the policy sees its level after the
+    seed's five values and before the lidar's sectors (30 values)."""
 
     simulator: EBoatSimulatorConfig = dataclasses.field(default_factory=avoid_simulator)
     episode_time: float = 400.0
@@ -438,7 +513,8 @@ class AvoidConfig(TaskConfig):
 @dataclasses.dataclass(frozen=True)
 class AvoidSailConfig(AvoidConfig):
     """The avoidance task under sail alone: as :class:`AvoidConfig`, with the propeller off (a0 ignored, level
-    0), wind 4-8 m/s and 800 s (a 200 m beat to windward takes the boat about 5 minutes)."""
+    0), wind 4-8 m/s and 800 s (a 200 m beat to windward takes the boat about 5 minutes); the reef rule is
+    the avoidance task's (the default :class:`ReefRule`)."""
 
     propeller: bool = False
     episode_time: float = 800.0

@@ -13,8 +13,9 @@ from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
 
-__all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "BoatView", "StartRows", "POLICY_OBS", "PRIVILEGED_OBS", "apply_actions",
-           "apply_task_actions", "evaluate", "observe", "draw_starts"]
+__all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "BoatView", "StartRows", "POLICY_OBS",
+           "PRIVILEGED_OBS", "policy_observation_count", "apply_actions", "apply_task_actions", "evaluate", "observe",
+           "draw_starts", "reef_level_for"]
 
 EPISODE_START = wp.constant(0x3C6E_F372)
 """Tag of the random stream that draws each episode's start."""
@@ -22,11 +23,15 @@ RANDOMISATION = wp.constant(0x510E_527F)
 """Tag of the random stream that draws each episode's domain randomisation (foil and sensor-noise factors)."""
 CURRENT_DRAW = wp.constant(0x5BE0_CD19)
 """Tag of the random stream that draws each episode's current (speed and direction)."""
+REEF_DRAW = wp.constant(0x1F83_D9AB)
+"""Tag of the random stream that draws each episode's random reef level (``ReefRule.random_level``)."""
 SEED_OBS = wp.constant(5)
 PLUS_OBS = wp.constant(15)
 PRIVILEGED_OBS = 12
 """Values the critic sees beyond the policy's observation."""
 POLICY_OBS = {"seed": 5, "plus": 15}
+"""Values of each observation set; a task appends its reef level and its lidar's sectors
+(:func:`policy_observation_count`)."""
 MAX_LEVEL = wp.constant(5)
 RUDDER_LIMIT = wp.constant(60.0 / (180.0 / 3.141592653589793))
 SHEET_HALF = wp.constant(45.0 / (180.0 / 3.141592653589793))
@@ -64,6 +69,10 @@ class TaskParameters:
     sail_only: int
     """1: the task has no propeller (``TaskConfig.propeller`` False): the level commanded, and the one the
     reward sees, is 0 whatever a0 is. 0 (also a zeroed struct's value): a0 sets the level."""
+    reef_observation: int
+    """1: the policy sees its reef level after the observation set's values (a task with a ``reef`` rule)."""
+    reef_levels: int
+    """The boat's reef levels, the full sail included (the observed value is level / (levels - 1))."""
 
 
 @wp.struct
@@ -122,6 +131,7 @@ class BoatView:
     rudder_angle: wp.array(dtype=float)
     boom_angle: wp.array(dtype=float)
     sheet_limit: wp.array(dtype=float)
+    reef_level: wp.array(dtype=int)
 
 
 @wp.struct
@@ -139,6 +149,7 @@ class StartRows:
     noise_scale: wp.array(dtype=float)
     current_speed: wp.array(dtype=float)
     current_direction: wp.array(dtype=float)
+    reef_level: wp.array(dtype=int)
 
 
 @wp.struct
@@ -179,6 +190,38 @@ class StartDistribution:
     current_direction_low: float
     """[rad]"""
     current_direction_high: float
+    reef_rule: int
+    """1: the task draws a reef level per episode (``TaskConfig.reef``); 0: the full sail always."""
+    reef_thresholds: wp.array(dtype=float)
+    """The rule's true wind speeds [m/s] (``ReefRule.thresholds``; one unused row when there are none)."""
+    reef_threshold_count: int
+    reef_fixed_level: int
+    """``ReefRule.level``, or -1 for the rule."""
+    reef_random: float
+    """``ReefRule.random_level``: probability of a uniform draw over the levels instead."""
+    reef_levels: int
+    """The boat's reef levels, the full sail included."""
+
+
+def policy_observation_count(task) -> int:
+    """Values of ``task``'s policy observation (a ``TaskConfig``): its observation set's, then the reef level (a
+    task with a ``reef`` rule), then the lidar's sectors (a task with a ``lidar``)."""
+    return POLICY_OBS[task.observation.value] + task.reef_observations + task.lidar_observations
+
+
+@wp.func
+def reef_level_for(start: StartDistribution, wind_speed: float) -> int:
+    """The reef level the rule gives at mean true wind ``wind_speed`` [m/s]: the fixed level where there is one,
+    else the number of thresholds at or below the speed; 0 without a rule."""
+    if start.reef_rule == 0:
+        return 0
+    if start.reef_fixed_level >= 0:
+        return start.reef_fixed_level
+    level = int(0)
+    for k in range(start.reef_threshold_count):
+        if start.reef_thresholds[k] <= wind_speed:
+            level = level + 1
+    return level
 
 
 @wp.func
@@ -377,8 +420,10 @@ def observe(
     policy: wp.array2d(dtype=float),
     critic: wp.array2d(dtype=float),
 ):
-    """The policy's observation (the task's set) and the critic's: the policy's followed by privileged
-    truth (distance, bearing, velocities, attitude, true wind, progress along the route)."""
+    """The policy's observation (the task's set, then its reef level, level / (levels - 1) in [0, 1], on a task
+    with a reef rule) and the critic's: the policy's followed by privileged truth (distance, bearing,
+    velocities, attitude, true wind, progress along the route). A lidar's sectors come after each
+    (``ObstacleCourse.append_observation``)."""
     env = wp.tid()
     rotation = boats.orientation[env]
     heading = heading_of(rotation)
@@ -415,6 +460,9 @@ def observe(
         for k in range(3):
             policy[env, 12 + k] = course.last_action[env, k]
         p = PLUS_OBS
+    if task.reef_observation != 0:
+        policy[env, p] = float(boats.reef_level[env]) / float(wp.max(task.reef_levels - 1, 1))
+        p = p + 1
     for k in range(p):
         critic[env, k] = policy[env, k]
     nu = boats.velocity[env]
@@ -448,8 +496,9 @@ def draw_starts(
     """A new episode for every environment whose ``reset_mask`` is set, from its own random stream
     (seed, environment ``first_env`` + index, episode number): the simulator's start rows and the task's
     bookkeeping (``first_env``: the number of this batch's first environment in a larger one). The
-    domain randomisation (foil and sensor-noise factors) and the current draw last, each from a stream of
-    its own, so the rest of an episode's start does not depend on them."""
+    domain randomisation (foil and sensor-noise factors), the current and the random reef level draw last,
+    each from a stream of its own, so the rest of an episode's start does not depend on them. The reef level
+    follows the rule at the drawn mean wind speed (before gusts)."""
     env = wp.tid()
     if reset_mask[env] == 0:
         return
@@ -490,6 +539,15 @@ def draw_starts(
     rows.current_speed[env] = from_uniform(wp.randf(flow), start.current_speed_low, start.current_speed_high, 0.0)
     rows.current_direction[env] = from_uniform(wp.randf(flow), start.current_direction_low,
                                                start.current_direction_high, 0.0)
+    # The reef level: the rule's at the drawn mean wind, or with probability reef_random a uniform draw over the
+    # levels, from a stream of its own (both numbers always drawn, so each episode's pair is fixed).
+    level = reef_level_for(start, rows.wind_speed[env])
+    reef = stream_state(seed[0], REEF_DRAW, episode, first_env + env)
+    chance = wp.randf(reef)
+    pick = wp.randf(reef)
+    if start.reef_rule != 0 and chance < start.reef_random:
+        level = wp.min(int(pick * float(start.reef_levels)), start.reef_levels - 1)
+    rows.reef_level[env] = level
 
     course.target_index[env] = 0
     course.leg_start[env] = local

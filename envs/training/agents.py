@@ -26,7 +26,21 @@ from ..tasks.task_configs import (
     WaypointPlusConfig,
 )
 
-__all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice"]
+__all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice",
+           "TRAINING_REEF_RANDOM", "with_training_reef"]
+
+TRAINING_REEF_RANDOM = 0.25
+"""Probability per training episode that the reef level is drawn uniformly instead of by the task's rule
+(``ReefRule.random_level``), so that a policy meets every rig in every wind it trains in; evaluation and the
+tasks' defaults keep 0."""
+
+
+def with_training_reef(task: TaskConfig) -> TaskConfig:
+    """``task`` with its reef rule's ``random_level`` at :data:`TRAINING_REEF_RANDOM` (a task without a rule:
+    as it is)."""
+    if task.reef is None:
+        return task
+    return dataclasses.replace(task, reef=dataclasses.replace(task.reef, random_level=TRAINING_REEF_RANDOM))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -199,14 +213,16 @@ def mission_practice(base: MissionConfig | None = None) -> MissionConfig:
     """Single legs for the mission ``base`` (default ``MissionConfig()``; ``MissionSailConfig()`` for the
     sail-only one): from rest or under way, any heading, to one waypoint 50-150 m away at any bearing to a
     gusty 8-12 m/s wind (the mission's legs are 100 and 141 m, reached, run and beaten), on the mission's
-    boat and sea, with the boat's mass and foils varied by 5 %."""
+    boat and sea, with the boat's mass and foils varied by 5 % and the reef level drawn at random a quarter of
+    the time (:func:`with_training_reef`)."""
     base = base if base is not None else MissionConfig()
     start = StartConfig(heading_deg=(-180.0, 180.0), heading_step_deg=0.0, wind_speed=(8.0, 12.0),
                         wind_direction_deg=(-180.0, 180.0), wind_direction_step_deg=0.0, gust_scale=(0.5, 1.5),
                         waypoint_distance=(50.0, 150.0), waypoint_bearing_deg=(-180.0, 180.0), position_jitter=1.0,
                         surge_speed=(0.0, 1.5), sheet_deg=(0.0, 90.0), foil_variation=0.05)
     simulator = dataclasses.replace(base.simulator, mass_variation=0.05)
-    return dataclasses.replace(base, simulator=simulator, route=None, episode_time=400.0, start=start)
+    return with_training_reef(dataclasses.replace(base, simulator=simulator, route=None, episode_time=400.0,
+                                                  start=start))
 
 
 def _waypoint() -> TrainConfig:
@@ -215,8 +231,8 @@ def _waypoint() -> TrainConfig:
 
 
 def _waypoint_plus() -> TrainConfig:
-    return TrainConfig(task="EBoatWaypointPlus-v0", train_task=WaypointPlusConfig(), num_envs_cpu=256,
-                       num_envs_cuda=4096, steps_per_env=24, iterations=400, save_interval=50,
+    return TrainConfig(task="EBoatWaypointPlus-v0", train_task=with_training_reef(WaypointPlusConfig()),
+                       num_envs_cpu=256, num_envs_cuda=4096, steps_per_env=24, iterations=400, save_interval=50,
                        ppo=PpoConfig(hidden_dims=(128, 128)))
 
 
@@ -231,12 +247,13 @@ def _mission_sail() -> TrainConfig:
 
 
 def _avoid() -> TrainConfig:
-    return TrainConfig(task="EBoatAvoid-v0", train_task=AvoidConfig(), num_envs_cpu=256, num_envs_cuda=4096,
-                       steps_per_env=32, iterations=300, save_interval=50, ppo=PpoConfig(hidden_dims=(128, 128)))
+    return TrainConfig(task="EBoatAvoid-v0", train_task=with_training_reef(AvoidConfig()), num_envs_cpu=256,
+                       num_envs_cuda=4096, steps_per_env=32, iterations=300, save_interval=50,
+                       ppo=PpoConfig(hidden_dims=(128, 128)))
 
 
 def _avoid_sail() -> TrainConfig:
-    return dataclasses.replace(_avoid(), task="EBoatAvoidSail-v0", train_task=AvoidSailConfig())
+    return dataclasses.replace(_avoid(), task="EBoatAvoidSail-v0", train_task=with_training_reef(AvoidSailConfig()))
 
 
 AGENT_CONFIGS: dict[str, Callable[[], TrainConfig]] = {

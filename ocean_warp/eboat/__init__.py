@@ -6,6 +6,7 @@ from .geometry import Ballast, EBoatGeometry, HullKind
 from .hull_shape import HullShape, eboat_hull
 from .offsets_hull import offsets_hull
 from .mass_properties import MassProperties, eboat_mass_properties
+from .reef import ReefedSail, reefed_sail
 from .sheet import Version
 from .eboat_simulator import EBoatSimulator, SailingRig
 from .simulator_config import EBoatSimulatorConfig, still_water
@@ -14,4 +15,4 @@ from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
 __all__ = ["EBoat", "EBoatConfig", "Hydrostatics", "Profile", "Version", "EBoatSimulator", "EBoatSimulatorConfig",
            "EBoatState", "EBoatControl", "EBoatStart", "EBoatTensors", "SailingRig", "HullShape", "eboat_hull",
            "HullKind", "Ballast", "EBoatGeometry", "offsets_hull", "MassProperties", "eboat_mass_properties",
-           "load_foil_table", "eboat_hydrodynamics", "still_water"]
+           "load_foil_table", "eboat_hydrodynamics", "still_water", "ReefedSail", "reefed_sail"]

@@ -28,7 +28,7 @@ from .geometry import PROCEDURAL_MAST_LENGTH, Ballast, EBoatGeometry, HullKind, 
 from .hull_shape import MIN_TRIANGLE_BUDGET, HullShape, eboat_hull, resolution_for_budget
 from .mass_properties import MassProperties, eboat_mass_properties
 from .offsets_hull import DEFAULT_SECTION_POINTS, DEFAULT_STATIONS, offsets_hull
-from .sheet import ACTUATORS, ENVIRONMENT, FOILS, VRX, Version
+from .sheet import ACTUATORS, BOOM_HEIGHT, ENVIRONMENT, FOILS, VRX, Version
 
 __all__ = ["Profile", "Hydrostatics", "HullKind", "Ballast", "EBoatConfig", "EBoat", "load_foil_table",
            "eboat_hydrodynamics", "eboat_hull_mesh", "eboat_lifting_surfaces"]
@@ -117,6 +117,12 @@ class EBoatConfig:
     2 024 triangles (the procedural hull: ``hull_shape`` as it is). With a budget, ``hull_shape`` must keep
     the default resolution, which the budget replaces. ``benchmarks/studies/hull_fidelity.py`` measures what a
     budget costs."""
+    reef_areas: tuple[float, ...] = (2.0, 1.15)
+    """Sail areas of the reef levels after the full sail [m^2], each positive, below the full sail's (the sheet's
+    3.188 m^2) and below the one before: level k > 0 sails the full sail scaled by s_k = sqrt(area_k / 3.188)
+    about its tack (``kernels.sailing_rig``). The default, about 2.0 and 1.15 m^2 (63 % and 36 % of the area,
+    s = 0.79 and 0.60), are the model-yacht style change-downs of the sheet's VPP (issue 34); () gives the full
+    sail alone."""
 
     def __post_init__(self):
         object.__setattr__(self, "version", require_choice("EBoatConfig", "version", self.version, Version))
@@ -146,6 +152,37 @@ class EBoatConfig:
             raise ValueError("EBoatConfig.seakeeping needs the real hull in the physics profile's mesh model (its "
                              "hydrodynamic database is the real hull's)")
         self._check_hull_triangles()
+        self._check_reef_areas()
+
+    def _check_reef_areas(self) -> None:
+        areas = self.reef_areas
+        try:
+            values = tuple(float(a) for a in areas)
+        except (TypeError, ValueError):
+            raise ValueError(f"EBoatConfig.reef_areas must be a sequence of areas [m^2], got {areas!r}") from None
+        full = FOILS[self.version].sail_area
+        if not all(np.isfinite(values)) or any(a <= 0.0 for a in values) or any(a >= full for a in values):
+            raise ValueError(f"EBoatConfig.reef_areas must be finite areas in (0, {full}) m^2, below the full sail's "
+                             f"{full} m^2, got {areas!r}")
+        if any(b >= a for a, b in zip(values, values[1:])):
+            raise ValueError(f"EBoatConfig.reef_areas must decrease from level to level, got {areas!r}")
+        object.__setattr__(self, "reef_areas", values)
+
+    @property
+    def sail_areas(self) -> tuple[float, ...]:
+        """Sail area of every reef level [m^2]: the full sail's (level 0), then ``reef_areas``."""
+        return (FOILS[self.version].sail_area,) + self.reef_areas
+
+    @property
+    def reef_levels(self) -> int:
+        """Number of reef levels, the full sail included."""
+        return 1 + len(self.reef_areas)
+
+    @property
+    def reef_scales(self) -> tuple[float, ...]:
+        """Linear factor s of every reef level on the full sail's dimensions: 1, then sqrt(area / full area)."""
+        full = FOILS[self.version].sail_area
+        return (1.0,) + tuple(float(np.sqrt(area / full)) for area in self.reef_areas)
 
     def _check_hull_triangles(self) -> None:
         budget = self.hull_triangles
@@ -326,16 +363,39 @@ class EBoat:
 
     @property
     def boom_inertia(self) -> float:
-        """Boom and sail about the mast [kg m^2]: the boom as a 1.8 m rod from the mast (sheet), the sail
-        as a triangle on it (foot 1.8 m, centroid 0.6 m aft; assumed)."""
+        """Boom and full sail about the mast [kg m^2]: the boom as a 1.8 m rod from the mast (sheet), the sail
+        as a triangle on it (:attr:`sail_inertia`)."""
         boom = next(link for link in self.geometry.links if link.name == "boom").mass
-        sail = next(link for link in self.geometry.links if link.name == "sail").mass
-        return boom * 1.8**2 / 3 + sail * (0.6**2 + 1.8**2 / 18)
+        return boom * 1.8**2 / 3 + self.sail_inertia
 
-    def rig_parameters(self, water_density: float) -> RigParameters:
-        """The rig's device struct for water of ``water_density`` [kg/m^3] (keel and rudder). The physics
-        profile's foils act where the boat has them (the real boat's lift at each foil's quarter chord); the
-        seed profile's where the sheet puts them (base frame)."""
+    @property
+    def sail_inertia(self) -> float:
+        """The full sail's share of :attr:`boom_inertia` [kg m^2]: a triangle on the boom (foot 1.8 m, centroid
+        0.6 m aft; assumed). A reef of linear factor s scales it by s^4 (mass s^2, arm s)."""
+        sail = next(link for link in self.geometry.links if link.name == "sail").mass
+        return sail * (0.6**2 + 1.8**2 / 18)
+
+    @property
+    def sail_foot_height(self) -> float:
+        """Height of the sail's foot in the body frame [m], about which a reef scales the sail: the physics
+        profile's is the real (or procedural) sail's foot; the seed profile's the sheet's assumed boom height
+        (0.45 m above the base frame, which puts the sheet's 1.5 m centre of effort a third of the way up a
+        triangle to the masthead)."""
+        if self.config.profile is Profile.PHYSICS:
+            return self.geometry.sail_foot_height
+        return BOOM_HEIGHT + self.geometry.base_z
+
+    @property
+    def sail_center_height(self) -> float:
+        """Height of the full sail's centre of effort in the body frame [m] (``RigParameters.sail_height``)."""
+        if self.config.profile is Profile.PHYSICS:
+            return self.geometry.sail_center_height
+        return self.rig_figures.sail_center_height + self.geometry.base_z
+
+    def rig_parameters(self, water_density: float, device="cpu") -> RigParameters:
+        """The rig's device struct for water of ``water_density`` [kg/m^3] (keel and rudder), its table of reef
+        scales on ``device``. The physics profile's foils act where the boat has them (the real boat's lift at
+        each foil's quarter chord); the seed profile's where the sheet puts them (base frame)."""
         figures, act, geometry = self.rig_figures, ACTUATORS, self.geometry
         rig = RigParameters()
         # The sail swings with the boom about the gooseneck's vertical axis (the real boat's 0.049 m aft of the
@@ -343,8 +403,11 @@ class EBoat:
         rig.mast_step = wp.vec3(geometry.boom_pivot[0], geometry.boom_pivot[1], geometry.mast_step[2])
         rig.sail_arm = figures.sail_arm
         physics = self.config.profile is Profile.PHYSICS
-        rig.sail_height = geometry.sail_center_height if physics else figures.sail_center_height + geometry.base_z
+        rig.sail_height = self.sail_center_height
         rig.sail_area = figures.sail_area
+        rig.sail_foot_height = self.sail_foot_height
+        rig.reef_scale = wp.array(np.array(self.config.reef_scales, dtype=np.float32), dtype=float, device=device)
+        rig.sail_inertia = self.sail_inertia
         rig.keel_center = wp.vec3(*(geometry.keel_center if physics else geometry.from_base(figures.keel_center)))
         rig.keel_area = self.keel.area if physics else figures.keel_area
         rig.rudder_center = wp.vec3(*(geometry.rudder_center if physics

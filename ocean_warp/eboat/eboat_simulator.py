@@ -23,6 +23,7 @@ from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_indices, require_int_in_range, require_per_item, require_rows
 from ocean_warp.wind import Wind
 from .eboat import EBoat, Hydrostatics
+from .reef import require_reef_levels
 from .simulator_config import EBoatSimulatorConfig
 from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
 
@@ -34,23 +35,24 @@ class SailingRig:
     propeller, the water's density), its ``state`` (actuators, boom, foil factors) and its ``control`` (the
     commands), and the force model that turns them, with the wind and the water, into sail, keel, rudder,
     windage and propeller forces every substep (keel and rudder in the water's flow at their depth, current
-    included). ``state`` and ``control`` are Warp structs of (N,) arrays
+    included), the sail at each boat's reef level. ``state`` and ``control`` are Warp structs of (N,) arrays
     (``RigState``, ``RigControl`` in ``ocean_warp.kernels.sailing_rig``: names, units)."""
 
     def __init__(self, eboat: EBoat, count: int, wind: Wind, *, water_density: float, device):
         self.device = wp.get_device(device)
         self.count = count
         self.wind = wind
-        self.parameters = eboat.rig_parameters(water_density)
+        self.parameters = eboat.rig_parameters(water_density, self.device)
         self.tables = eboat.foil_tables(self.device)
         zeros = lambda dtype=float: wp.zeros(count, dtype=dtype, device=self.device)  # noqa: E731
         self.control = struct_from(RigControl, rudder=zeros(), sheet=zeros(), propeller=zeros(int))
         """What is commanded: rudder [rad], sheet [rad], propeller level."""
         self.state = struct_from(RigState, rudder_angle=zeros(), sheet_limit=zeros(), boom_angle=zeros(),
                                  boom_rate=zeros(),
-                                 foil_scale=wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=self.device))
-        """What moves (rudder and boom angles [rad], boom rate [rad/s]) and the foil factors of the episode
-        (set by :meth:`reset_masked`)."""
+                                 foil_scale=wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=self.device),
+                                 reef_level=zeros(int))
+        """What moves (rudder and boom angles [rad], boom rate [rad/s]), the foil factors and the reef level of
+        the episode (set by :meth:`reset_masked`)."""
         self._around: RigSurroundings | None = None
 
     def substep(self, simulator) -> None:
@@ -63,12 +65,15 @@ class SailingRig:
                           self.control, self.state],
                   outputs=[simulator.fleet.forces.model_wrench, simulator.fleet.state.status])
 
-    def reset_masked(self, mask: wp.array, sheet: wp.array, foil_scale: wp.array | None = None) -> None:
+    def reset_masked(self, mask: wp.array, sheet: wp.array, foil_scale: wp.array | None = None,
+                     reef_level: wp.array | None = None) -> None:
         """Boats whose ``mask`` is non-zero: rudder and boom centred, propeller stopped, sheet (command and
-        actual limit) at their row of ``sheet`` [rad], and their foil factors at their row of
-        ``foil_scale`` (N,) vec3 (None: kept). Launches only (graph-safe)."""
+        actual limit) at their row of ``sheet`` [rad], their foil factors at their row of ``foil_scale`` (N,)
+        vec3 and their reef level at their row of ``reef_level`` (N,) int32 (None: kept). Launches only
+        (graph-safe)."""
         wp.launch(reset_rig, dim=self.count, device=self.device,
                   inputs=[mask, sheet, self.state.foil_scale if foil_scale is None else foil_scale,
+                          self.state.reef_level if reef_level is None else reef_level,
                           self.parameters.sheet_limit_max, self.control, self.state])
 
 
@@ -182,7 +187,7 @@ class EBoatSimulator:
             wind_mean_speed=wind.state.mean_speed, wind_mean_direction=wind.state.mean_direction,
             wind_speed=wind.state.speed, wind_direction=wind.state.direction, wind_velocity=wind.state.velocity,
             gust_scale=wind.state.gust_scale, current_speed=current.speed, current_direction=current.direction,
-            current_velocity=current.velocity, foil_scale=rig.state.foil_scale,
+            current_velocity=current.velocity, foil_scale=rig.state.foil_scale, reef_level=rig.state.reef_level,
             noise_scale=sensors.noise_scale, readings=sensors.readings, truth=sensors.truth, time=self.simulator.clock)
         """What moves (Warp arrays; see :class:`EBoatState` for units)."""
         self.control = EBoatControl(rudder=rig.control.rudder, sheet=rig.control.sheet,
@@ -200,6 +205,13 @@ class EBoatSimulator:
     def count(self) -> int:
         return self.fleet.count
 
+    def sail_scales(self) -> np.ndarray:
+        """(N,) float64: each boat's sail scale at its reef level now, the linear factor on the full sail about
+        its tack (``config.boat.reef_scales``; reads the device), for drawings."""
+        with ordered_with_torch(self.device):
+            levels = self.state.reef_level.numpy()
+        return np.asarray(self.config.boat.reef_scales, dtype=np.float64)[levels]
+
     @property
     def time(self) -> float:
         """Simulated time [s] (reads the device)."""
@@ -207,7 +219,7 @@ class EBoatSimulator:
 
     def reset(self, boats=None, *, position=(0.0, 0.0, 0.0), heading=0.0, velocity=None, wind_speed=None,
               wind_direction=None, sheet=None, foil_scale=None, noise_scale=None, current_speed=None,
-              current_direction=None) -> None:
+              current_direction=None, reef_level=None) -> None:
         """Host path of :meth:`reset_masked`. Put the chosen boats (None: all) upright at ``position`` [m]
         with ``heading`` [rad, yaw from +x] and ``velocity`` (Fossen nu, default at rest); centre their
         rudder and boom, stop the propeller, and sheet in, or set the sheet (command and actual limit) to
@@ -215,7 +227,8 @@ class EBoatSimulator:
         steady current (``current_speed`` [m/s] toward ``current_direction`` [rad]) (default: keep them).
         ``foil_scale``, factors on the (sail, keel, rudder) lift and drag coefficients (a row of 3 per chosen
         boat), and ``noise_scale``, a factor on each chosen boat's sensor noise, default to 1 (as configured),
-        whatever they were. Scalars and single rows broadcast."""
+        whatever they were; ``reef_level``, each chosen boat's reef level (a whole number in [0,
+        ``config.boat.reef_levels``)), to 0, the full sail. Scalars and single rows broadcast."""
         owner = "EBoatSimulator.reset"
         indices = require_indices(owner, "boats", boats, self.count)
         k = len(indices)
@@ -246,6 +259,8 @@ class EBoatSimulator:
         noise_scales = require_per_item(owner, "noise_scale", 1.0 if noise_scale is None else noise_scale, k)
         if np.any(noise_scales < 0.0):
             raise ValueError(f"{owner}.noise_scale must be >= 0, got {noise_scale!r}")
+        reef_levels = require_reef_levels(owner, "reef_level", 0 if reef_level is None else reef_level, k,
+                                          self.config.boat.reef_levels)
         if k == 0:
             return
         orientations = quaternion_from_roll_pitch_yaw(np.column_stack([np.zeros(k), np.zeros(k), headings]))
@@ -254,7 +269,7 @@ class EBoatSimulator:
                              ("sheet", sheets), ("wind_speed", speeds), ("wind_direction", directions),
                              ("gust_scale", gust_scales), ("current_speed", current_speeds),
                              ("current_direction", current_directions), ("foil_scale", foil_scales),
-                             ("noise_scale", noise_scales)):
+                             ("noise_scale", noise_scales), ("reef_level", reef_levels)):
             getattr(self.start, name).assign(rows_at(indices, values, n))
         with ordered_with_torch(self.device):
             self.reset_masked(mask_of(indices, n, self.device))
@@ -264,7 +279,7 @@ class EBoatSimulator:
         ``start`` (default ``self.start``): pose, velocity, sheet, its environment's mean wind and steady
         current (evaluated, tide included, at the simulator's time), with
         flags, external wrenches, slamming history, rudder, boom, propeller and gusts cleared, its foil
-        factors and sensor-noise factor set, a new IMU bias drawn (with that noise factor), and every
+        factors, reef level and sensor-noise factor set, a new IMU bias drawn (with that noise factor), and every
         sensor channel read at once from the new state. Boats not in the mask are
         untouched. It only launches kernels (no allocation, no host copy), so it can run inside a captured
         graph; outside one, wrap it in ``ocean_warp.torch_streams.ordered_with_torch``."""
@@ -272,7 +287,7 @@ class EBoatSimulator:
         self.fleet.reset_masked(mask, start.position, start.orientation, start.velocity)
         self.wind.reset_masked(mask, start.wind_speed, start.wind_direction, start.gust_scale)
         self.current.reset_masked(mask, start.current_speed, start.current_direction)
-        self.rig.reset_masked(mask, start.sheet, start.foil_scale)
+        self.rig.reset_masked(mask, start.sheet, start.foil_scale, start.reef_level)
         self.sensors.reset_masked(mask, self.fleet, start.noise_scale)
 
     def rewind(self) -> None:

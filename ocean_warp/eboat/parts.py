@@ -9,7 +9,9 @@ the sheet's area with a bulb below, the rudder box and a triangular sail.
 Frames: the body frame (x to the bow, y to port, z up, origin at the waterline) for the fixed parts; the
 boom and the rudder each in a pivot frame, origin on its vertical axis of rotation, so that a boat's
 boom angle b [rad] (positive to port) is a rotation of -b about the pivot's z axis, and likewise the
-rudder angle (positive with the trailing edge to port), as in ``ocean_warp.kernels.sailing_rig``.
+rudder angle (positive with the trailing edge to port), as in ``ocean_warp.kernels.sailing_rig``. A reefed
+sail is this sail scaled by its level's linear factor about its tack, ``BoatParts.sail_tack`` (the foot of its
+luff at the mast), as the rig sails it (``EBoatConfig.reef_scales``).
 """
 
 from __future__ import annotations
@@ -24,10 +26,11 @@ from .eboat import EBoatConfig, eboat_hull_mesh
 from .geometry import EBoatGeometry, HullKind, eboat_geometry
 from .sheet import FOILS
 
-__all__ = ["BoatParts", "eboat_parts", "BODY", "BOOM", "RUDDER"]
+__all__ = ["BoatParts", "eboat_parts", "BODY", "BOOM", "REEF", "RUDDER"]
 
-BODY, BOOM, RUDDER = "Body", "Boom", "Rudder"
-"""Names of the prototype's three rigid groups (children of the prototype prim)."""
+BODY, BOOM, REEF, RUDDER = "Body", "Boom", "Reef", "Rudder"
+"""Names of the prototype's rigid groups (children of the prototype prim): the body, the boom's spar, the sail
+(in its tack's frame, so that a reef scales it about its origin) and the rudder."""
 
 BOOM_LENGTH = 1.8
 """From the mast to the clew [m] (the rod of ``EBoat.boom_inertia``)."""
@@ -60,11 +63,21 @@ class BoatParts:
     """(3,) the boom's gooseneck on the mast, body frame [m]."""
     rudder_pivot: np.ndarray
     """(3,) the top of the rudder stock, body frame [m]."""
+    sail_tack: np.ndarray
+    """(3,) the sail's tack, the foot of its luff at the mast, in the boom's pivot frame [m]: a reef of linear
+    factor s draws ``sail`` as tack + s (point - tack)."""
 
     def group_points(self, group: str) -> np.ndarray:
-        """(P, 3) every vertex of ``group`` (BODY, BOOM or RUDDER) in that group's own frame [m]."""
+        """(P, 3) every vertex of ``group`` (BODY, BOOM, REEF or RUDDER) in that group's own frame [m]: the
+        boom's spar and sail in the pivot's, the sail alone (REEF) in its tack's."""
+        if group == REEF:
+            return self.sail_in_tack_frame().points
         meshes = {BODY: (self.hull, self.keel, self.mast), BOOM: (self.spar, self.sail), RUDDER: (self.blade,)}
         return concatenate(*meshes[group]).points
+
+    def sail_in_tack_frame(self) -> MeshData:
+        """The full sail with its tack at the origin (the boom pivot's axes) [m]."""
+        return MeshData(self.sail.points - self.sail_tack, self.sail.face_counts, self.sail.face_indices)
 
 
 def eboat_parts(config: EBoatConfig | None = None, *, hull_detail: int = 2) -> BoatParts:
@@ -87,7 +100,8 @@ def eboat_parts(config: EBoatConfig | None = None, *, hull_detail: int = 2) -> B
     else:
         keel, sail, blade = _real_appendages(geometry)
     return BoatParts(hull=hull_mesh, keel=keel, mast=mast, spar=spar, sail=sail, blade=blade,
-                     boom_pivot=boom_pivot, rudder_pivot=np.array(geometry.rudder_pivot))
+                     boom_pivot=boom_pivot, rudder_pivot=np.array(geometry.rudder_pivot),
+                     sail_tack=sail.points[0].copy())
 
 
 def _procedural_appendages(config: EBoatConfig, geometry: EBoatGeometry) -> tuple[MeshData, MeshData, MeshData]:
@@ -103,6 +117,7 @@ def _procedural_appendages(config: EBoatConfig, geometry: EBoatGeometry) -> tupl
                    KEEL_ROOT_Z - span, KEEL_ROOT_Z + 0.05)  # a little into the hull, so no gap shows
     bulb = ellipsoid((keel_x - 0.1 * chord, 0.0, KEEL_ROOT_Z - span), (0.35, 0.07, 0.07))
     masthead_z = float(geometry.masthead[2])
+    # The tack first (``BoatParts.sail_tack`` is the sail's first point).
     sail = triangle((-MAST_RADIUS, 0.0, SPAR_RADIUS), (-BOOM_LENGTH, 0.0, SPAR_RADIUS),
                     (-MAST_RADIUS, 0.0, masthead_z - geometry.boom_height - 0.05))
     blade = extruded(foil_section(RUDDER_CHORD, RUDDER_THICKNESS / RUDDER_CHORD, leading_edge_x=0.25 * RUDDER_CHORD),
@@ -124,6 +139,7 @@ def _real_appendages(geometry: EBoatGeometry) -> tuple[MeshData, MeshData, MeshD
     bulb = ellipsoid(bulb_center, bulb_half)
     foot, head = geometry.sail_foot_height - geometry.boom_height, geometry.sail_head_height - geometry.boom_height
     luff = geometry.mast_step[0] - MAST_RADIUS - geometry.boom_pivot[0]  # the mast's aft face
+    # The tack first (``BoatParts.sail_tack`` is the sail's first point).
     sail = MeshData(np.array([[luff, 0.0, foot], [luff - real.SAIL_FOOT_LENGTH, 0.0, foot],
                               [luff - real.SAIL_HEAD_LENGTH, 0.0, head], [luff, 0.0, head]]),
                     np.array([4], dtype=np.int32), np.array([0, 1, 2, 3], dtype=np.int32))

@@ -76,6 +76,9 @@ class EBoatState(_Named):
     foil_scale: Any
     """(N,) vec3: factors on the lift and drag coefficients of each boat's (sail, keel, rudder) this
     episode (1: as tabulated)."""
+    reef_level: Any
+    """(N,) int32: each boat's reef level this episode (0: the full sail; k: ``EBoatConfig.reef_areas[k - 1]``,
+    the sail scaled by ``EBoatConfig.reef_scales[k]`` about its tack)."""
     noise_scale: Any
     """(N,) factor on every sensor channel's noise and on the IMU bias of each boat this episode (1: as
     configured, 0: exact readings)."""
@@ -127,13 +130,15 @@ class EBoatStart(_Named):
     """(N,) new direction the current sets toward [rad]."""
     foil_scale: Any
     """(N,) vec3: factors on the lift and drag coefficients of the (sail, keel, rudder) (1: as tabulated)."""
+    reef_level: Any
+    """(N,) int32: reef level of the sail (0: the full sail)."""
     noise_scale: Any
     """(N,) factor on the sensor noise and the IMU bias drawn at the reset (1: as configured)."""
 
     @classmethod
     def allocate(cls, count: int, device) -> "EBoatStart":
-        """Upright boats at rest at the world origin, sheeted in, in calm air and still water, foils and sensors
-        as configured."""
+        """Upright boats at rest at the world origin, sheeted in, in calm air and still water, full sail, foils
+        and sensors as configured."""
         upright = np.tile(np.array([0.0, 0.0, 0.0, 1.0], dtype=np.float32), (count, 1))
         return cls(position=wp.zeros(count, dtype=wp.vec3, device=device),
                    orientation=wp.array(upright, dtype=wp.quat, device=device),
@@ -145,6 +150,7 @@ class EBoatStart(_Named):
                    current_speed=wp.zeros(count, dtype=float, device=device),
                    current_direction=wp.zeros(count, dtype=float, device=device),
                    foil_scale=wp.full(count, wp.vec3(1.0, 1.0, 1.0), dtype=wp.vec3, device=device),
+                   reef_level=wp.zeros(count, dtype=wp.int32, device=device),
                    noise_scale=wp.ones(count, dtype=float, device=device))
 
 

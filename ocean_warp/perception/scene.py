@@ -148,6 +148,9 @@ class Scene:
         boat_env: (B,) the environment of each boat (-1: not drawn).
         boat_position, boat_orientation, boom_angle: the boats' (B,) Warp arrays (vec3 [m], quat, [rad]),
             read by every cast (bound, not copied).
+        reef_level: the boats' (B,) int32 Warp array of reef levels (``EBoatState.reef_level``), bound too: each
+            sail is drawn scaled about its tack by its level's factor (``boat.reef_scales``); None: the full
+            sail on every boat.
         objects: one sequence of :class:`SceneObject` for every environment (placed from each origin), or
             a sequence of ``envs`` such sequences, one per environment.
         origins: (envs, 3) world origin of each environment [m] (default: all at 0).
@@ -161,7 +164,7 @@ class Scene:
 
     def __init__(self, ocean: Ocean, *, envs: int, boat_env, boat_position: wp.array, boat_orientation: wp.array,
                  boom_angle: wp.array, objects: Sequence = (), origins=None, water_visible: bool = True,
-                 boat: EBoatConfig | None = None, free_slots: int = 0):
+                 boat: EBoatConfig | None = None, free_slots: int = 0, reef_level: wp.array | None = None):
         if not isinstance(ocean, Ocean):
             raise ValueError(f"Scene: ocean must be an ocean_warp Ocean, got {type(ocean).__name__}")
         if isinstance(envs, bool) or not isinstance(envs, int) or envs < 1:
@@ -184,9 +187,20 @@ class Scene:
         self.boat_env = boat_env.copy()
         """(B,) int64 numpy: the environment each boat is drawn in (-1: not drawn)."""
 
-        parts = eboat_parts(boat if boat is not None else EBoatConfig(), hull_detail=1)
+        boat = boat if boat is not None else EBoatConfig()
+        parts = eboat_parts(boat, hull_detail=1)
         body, boom = concatenate(parts.hull, parts.keel, parts.mast), concatenate(parts.spar, parts.sail)
-        self._meshes = [_wp_mesh(body, device), _wp_mesh(boom, device)]
+        self._meshes = [_wp_mesh(body, device), _wp_mesh(parts.spar, device),
+                        _wp_mesh(parts.sail_in_tack_frame(), device)]
+        if reef_level is None:
+            reef_level = wp.zeros(boat_position.shape[0], dtype=int, device=device)
+        elif reef_level.shape[0] != boat_position.shape[0]:
+            raise ValueError(f"Scene.reef_level must hold one level for each of the {boat_position.shape[0]} boats, "
+                             f"got {reef_level.shape[0]}")
+        self.reef_level = reef_level
+        """(B,) int32: each boat's reef level (bound, not copied); its sail is drawn at ``reef_scale[level]``."""
+        self.reef_scale = wp.array(np.array(boat.reef_scales, dtype=np.float32), dtype=float, device=device)
+        """(levels,) the linear factor on the sail of each reef level (``EBoatConfig.reef_scales``)."""
         boat_bound = max(float(np.linalg.norm(body.points, axis=1).max()),
                          float(np.linalg.norm(parts.boom_pivot)) + float(np.linalg.norm(boom.points, axis=1).max()))
 
@@ -195,6 +209,7 @@ class Scene:
         for _, item in flat:
             if item is not None and item.shape is Shape.MESH and id(item.mesh) not in mesh_ids:
                 mesh_ids[id(item.mesh)] = _wp_mesh(item.mesh, device)
+        boat_meshes = self._meshes[:3]
         self._meshes += list(mesh_ids.values())
         count = max(len(flat), 1)  # Warp arrays of length 0 cannot be read; a dummy row is never cast against
         anchor = np.zeros((count, 3), np.float32)
@@ -245,8 +260,9 @@ class Scene:
             object_bound=array(rows["bound"], float), object_color=array(rows["color"], wp.vec3),
             boat_start=array(boat_start, int), boat_list=array(order.astype(np.int32), int),
             boat_position=boat_position, boat_orientation=boat_orientation, boom_angle=boom_angle,
-            body_mesh=self._meshes[0].id, boom_mesh=self._meshes[1].id, boom_pivot=wp.vec3(*parts.boom_pivot),
-            boat_bound=boat_bound)
+            reef_level=reef_level, reef_scale=self.reef_scale, body_mesh=boat_meshes[0].id,
+            boom_mesh=boat_meshes[1].id, sail_mesh=boat_meshes[2].id, boom_pivot=wp.vec3(*parts.boom_pivot),
+            sail_tack=wp.vec3(*parts.sail_tack), boat_bound=boat_bound)
         """What the kernels take (:class:`~ocean_warp.kernels.ray_cast.SceneView`)."""
         self._band_start = array(np.array([1.0e30, -1.0e30], np.float32), float)
         self.object_count = len(flat)
@@ -261,7 +277,7 @@ class Scene:
         return cls(sim.ocean, envs=env.num_envs, boat_env=np.arange(env.num_envs), boat_position=sim.state.position,
                    boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=objects,
                    origins=env.origin.numpy(), water_visible=water_visible, boat=sim.config.boat,
-                   free_slots=free_slots)
+                   free_slots=free_slots, reef_level=sim.state.reef_level)
 
     @classmethod
     def for_simulator(cls, sim, objects: Sequence = (), *, water_visible: bool = True) -> Scene:
@@ -269,7 +285,7 @@ class Scene:
         sees itself), its objects placed from the world origin."""
         return cls(sim.ocean, envs=1, boat_env=np.zeros(sim.count, np.int64), boat_position=sim.state.position,
                    boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=[objects],
-                   water_visible=water_visible, boat=sim.config.boat)
+                   water_visible=water_visible, boat=sim.config.boat, reef_level=sim.state.reef_level)
 
     # --- per frame ----------------------------------------------------------------------------------
     def refresh(self) -> None:

@@ -175,8 +175,8 @@ class ExportSummary:
 
 def observation_layout(task: str, observation: str, num_obs: int) -> list[str]:
     """What each of the ``num_obs`` observation values of a policy for ``task`` is, with scaling and units:
-    the observation set's values, then those the task appends (lidar sectors), as far as the task's default
-    config says; values it cannot name are "value k (...)"."""
+    the observation set's values, then those the task appends (its reef level, its lidar's sectors), as far as
+    the task's default config says; values it cannot name are "value k (...)"."""
     base = list(SET_LAYOUTS.get(observation, ()))
     if not base or num_obs < len(base):
         return [f"value {k} (observation set {observation!r}: not described here)" for k in range(num_obs)]
@@ -184,19 +184,31 @@ def observation_layout(task: str, observation: str, num_obs: int) -> list[str]:
 
 
 def _appended_layout(task: str, first: int, count: int) -> list[str]:
-    """The ``count`` values a task appends to its observation set, from index ``first``: its lidar's sectors
-    where the task's default config has a lidar of ``count`` sectors."""
+    """The ``count`` values a task appends to its observation set, from index ``first``: its reef level (a task
+    with a reef rule), then its lidar's sectors, where the task's default config appends ``count`` values; the
+    lidar's sectors alone where ``count`` is theirs (a policy trained before the task's reef rule)."""
     if count == 0:
         return []
     config = _default_task_config(task)
-    lidar = None if config is None else config.lidar
-    if lidar is None or config.lidar_sectors != count:
+    if config is None or count not in (config.reef_observations + config.lidar_observations,
+                                       config.lidar_observations):
         return [f"value {first + k} (appended by {task}: not described here)" for k in range(count)]
-    azimuths = np.degrees(lidar.azimuths())
-    width = lidar.beams // count
-    return [f"lidar sector {k}: nearest return over the beams at azimuth {azimuths[k * width]:+.0f} to "
-            f"{azimuths[(k + 1) * width - 1]:+.0f} deg from the bow (positive to port) / {lidar.max_range:g} m, "
-            "in [0, 1]" for k in range(count)]
+    layout = []
+    if config.reef is not None and count > config.lidar_observations:
+        areas = " / ".join(f"{area:g}" for area in config.simulator.boat.sail_areas)
+        levels = config.simulator.boat.reef_levels
+        layout.append(f"reef level of the sail / {max(levels - 1, 1)}, in [0, 1]: 0 the full sail, 1 the deepest "
+                      f"reef (sail areas {areas} m2 by level, set at the episode's start by the task's rule from "
+                      "the true wind)")
+    lidar = config.lidar
+    if lidar is not None:
+        sectors = config.lidar_sectors
+        azimuths = np.degrees(lidar.azimuths())
+        width = lidar.beams // sectors
+        layout += [f"lidar sector {k}: nearest return over the beams at azimuth {azimuths[k * width]:+.0f} to "
+                   f"{azimuths[(k + 1) * width - 1]:+.0f} deg from the bow (positive to port) / "
+                   f"{lidar.max_range:g} m, in [0, 1]" for k in range(sectors)]
+    return layout
 
 
 def action_meaning(task: str) -> list[str]:

@@ -2,13 +2,18 @@
 
 - **One prim per boat** (:class:`PrimFleetWriter`): ``Boat_0000``... Xforms (``component`` models) with a
   time-sampled translate and orient (the pose), each holding ``Body``, ``Boom`` and ``Rudder`` that
-  reference the prototype; the boom's and the rudder's rotateZ are time-sampled; each hull has its colour
-  from :data:`~ocean_warp.usd.materials.HULL_PALETTE`. Good for a few dozen boats.
+  reference the prototype, and ``Boom/Reef``, the sail, at its tack; the boom's and the rudder's rotateZ and
+  the sail's scale (its reef) are time-sampled; each hull has its colour from
+  :data:`~ocean_warp.usd.materials.HULL_PALETTE`. Good for a few dozen boats.
 - **Point instancers** (:class:`InstancedFleetWriter`): animation inside a PointInstancer's prototype
   would be shared by every instance, so each moving part has its own instancer (``Bodies``, ``Booms``,
-  ``Rudders``) whose instances carry that part's world pose, composed here on the host from the boat's
-  pose and the part's pivot and angle. A few arrays per frame, however many boats; every hull has the
-  prototype's colour.
+  ``Sails``, ``Rudders``) whose instances carry that part's world pose, composed here on the host from the
+  boat's pose and the part's pivot and angle, and the sails their reef's scale. A few arrays per frame,
+  however many boats; every hull has the prototype's colour.
+
+A boat's sail is drawn at its reef: the full sail scaled by the level's linear factor s about its tack
+(``BoatParts.sail_tack``, the foot of its luff at the mast), as the rig sails it; s can change at any frame
+(a new episode).
 
 The fleet's prim is an ``assembly`` model in both layouts.
 
@@ -20,13 +25,13 @@ from __future__ import annotations
 import numpy as np
 from pxr import Gf, Kind, Sdf, Usd, UsdGeom, Vt
 
-from ..eboat.parts import BODY, BOOM, RUDDER, BoatParts
+from ..eboat.parts import BODY, BOOM, REEF, RUDDER, BoatParts
 from .materials import HULL_PALETTE, Look, LOOKS_BY_NAME, bind_look, define_look, hull_look_name
 from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, boat_path
 
 __all__ = ["PrimFleetWriter", "InstancedFleetWriter", "quaternion_multiply", "quaternion_rotate", "about_z"]
 
-INSTANCERS = {BODY: "Bodies", BOOM: "Booms", RUDDER: "Rudders"}
+INSTANCERS = {BODY: "Bodies", BOOM: "Booms", REEF: "Sails", RUDDER: "Rudders"}
 """Name of the instancer of each moving part."""
 
 
@@ -79,7 +84,7 @@ class PrimFleetWriter:
 
     def __init__(self, stage, count: int, prototype: dict[str, str], parts: BoatParts):
         _fleet_prim(stage, count)
-        self._pose, self._boom, self._rudder = [], [], []
+        self._pose, self._boom, self._rudder, self._reef = [], [], [], []
         for i in range(count):
             boat = UsdGeom.Xform.Define(stage, boat_path(i))
             Usd.ModelAPI(boat.GetPrim()).SetKind(Kind.Tokens.component)
@@ -92,13 +97,19 @@ class PrimFleetWriter:
                 part.GetPrim().GetReferences().AddInternalReference(prototype[name])
                 part.AddTranslateOp().Set(Gf.Vec3d(*map(float, pivot)))
                 ops.append(part.AddRotateZOp())
+            reef = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{BOOM}/{REEF}")
+            reef.GetPrim().GetReferences().AddInternalReference(prototype[REEF])
+            reef.AddTranslateOp().Set(Gf.Vec3d(*map(float, parts.sail_tack)))
+            self._reef.append(reef.AddScaleOp())
             _paint_hull(stage, boat_path(i), i)
 
-    def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles) -> None:
+    def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles, sail_scales=None) -> None:
         """One frame: positions (N, 3) [m], unit orientations (N, 4) (x, y, z, w), boom and rudder angles
-        (N,) [rad] (positive to port; each a rotation of minus the angle about the pivot's z, in degrees)."""
+        (N,) [rad] (positive to port; each a rotation of minus the angle about the pivot's z, in degrees), and
+        each sail's linear scale about its tack (N,) (its reef; None: 1, the full sail)."""
         boom_degrees = 0.0 - np.degrees(boom_angles)
         rudder_degrees = 0.0 - np.degrees(rudder_angles)
+        scales = np.ones(len(self._pose)) if sail_scales is None else np.asarray(sail_scales, dtype=np.float64)
         with Sdf.ChangeBlock():
             for i, (translate, orient) in enumerate(self._pose):
                 x, y, z = map(float, positions[i])
@@ -107,11 +118,13 @@ class PrimFleetWriter:
                 orient.Set(Gf.Quatf(qw, qx, qy, qz), time_code)
                 self._boom[i].Set(float(boom_degrees[i]), time_code)
                 self._rudder[i].Set(float(rudder_degrees[i]), time_code)
+                self._reef[i].Set(Gf.Vec3f(*(3 * (float(scales[i]),))), time_code)
 
 
 class InstancedFleetWriter:
-    """Three PointInstancers under :data:`~ocean_warp.usd.paths.FLEET` (``Bodies``, ``Booms``, ``Rudders``),
-    each with one prototype that references its group of ``prototype`` and one instance per boat."""
+    """Four PointInstancers under :data:`~ocean_warp.usd.paths.FLEET` (``Bodies``, ``Booms``, ``Sails``,
+    ``Rudders``), each with one prototype that references its group of ``prototype`` and one instance per
+    boat."""
 
     def __init__(self, stage, count: int, prototype: dict[str, str], parts: BoatParts):
         _fleet_prim(stage, count)
@@ -130,21 +143,28 @@ class InstancedFleetWriter:
             instancer.CreateProtoIndicesAttr(Vt.IntArray.FromNumpy(np.zeros(count, dtype=np.int32)))
             self._attributes[name] = (instancer.CreatePositionsAttr(), instancer.CreateOrientationsfAttr(),
                                       instancer.CreateExtentAttr())
+        self._sail_scales = UsdGeom.PointInstancer.Get(stage, f"{FLEET}/{INSTANCERS[REEF]}").CreateScalesAttr()
 
     def part_poses(self, positions, orientations, boom_angles, rudder_angles) -> dict[str, tuple]:
         """World (positions (N, 3), orientations (N, 4) x y z w) of each part group: the body at the boat's
-        pose, boom and rudder at their pivots, turned by minus their angle about the pivot's z axis."""
+        pose, boom and rudder at their pivots, turned by minus their angle about the pivot's z axis, the sail
+        at its tack on the boom."""
         poses = {BODY: (positions, orientations)}
         for name, pivot, angle in ((BOOM, self.parts.boom_pivot, boom_angles),
                                    (RUDDER, self.parts.rudder_pivot, rudder_angles)):
             poses[name] = (positions + quaternion_rotate(orientations, pivot),
                            quaternion_multiply(orientations, about_z(-np.asarray(angle, dtype=np.float64))))
+        boom_at, boom_rotation = poses[BOOM]
+        poses[REEF] = (boom_at + quaternion_rotate(boom_rotation, self.parts.sail_tack), boom_rotation)
         return poses
 
-    def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles) -> None:
+    def write(self, time_code: float, positions, orientations, boom_angles, rudder_angles, sail_scales=None) -> None:
         """One frame, the same arguments as :meth:`PrimFleetWriter.write`."""
         poses = self.part_poses(positions, orientations, boom_angles, rudder_angles)
+        scales = np.ones(self.count) if sail_scales is None else np.asarray(sail_scales, dtype=np.float64)
         with Sdf.ChangeBlock():
+            self._sail_scales.Set(Vt.Vec3fArray.FromNumpy(np.repeat(scales[:, None], 3, axis=1).astype(np.float32)),
+                                  time_code)
             for name, (where, rotation) in poses.items():
                 position_attr, orientation_attr, extent_attr = self._attributes[name]
                 where32 = where.astype(np.float32)

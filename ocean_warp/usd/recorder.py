@@ -268,10 +268,12 @@ class StageRecorder:
         return float(nearest) if abs(code - nearest) < 1e-6 else code
 
     def record(self, time_s: float, positions=None, orientations=None, boom_angles=None, rudder_angles=None, *,
-               object_poses=None, lidar_points=None) -> None:
+               object_poses=None, lidar_points=None, sail_scales=None) -> None:
         """Add the frame at time ``time_s`` [s] (later than the last one): the boats' positions (N, 3) [m],
         orientations (N, 4) (x, y, z, w, body -> world; normalised here), boom and rudder angles (N,) [rad]
-        (positive to port; None: 0), and the ocean evaluated at ``time_s``. Boat arguments may be numpy
+        (positive to port; None: 0), each sail's linear scale about its tack ``sail_scales`` (N,) in (0, 1]
+        (its reef level's, ``EBoatConfig.reef_scales``; None: 1, the full sail), and the ocean evaluated at
+        ``time_s``. Boat arguments may be numpy
         arrays, lists or torch tensors. With ``objects``: ``object_poses`` = (positions (M, 3) [m],
         orientations (M, 4)) of every object (``Scene.view.object_position`` / ``object_orientation``), of
         which the floating ones are sampled (None: they stay where they were). With ``lidar``:
@@ -286,7 +288,7 @@ class StageRecorder:
         if self.last_time_code is not None and code <= self.last_time_code:
             raise ValueError(f"{owner}: time_s must increase from frame to frame, got {time_s!r} s (time code {code}) "
                              f"after time code {self.last_time_code}")
-        boats = self._boat_frame(owner, positions, orientations, boom_angles, rudder_angles)
+        boats = self._boat_frame(owner, positions, orientations, boom_angles, rudder_angles, sail_scales)
         try:
             if self.first_time_code is None:
                 self._start(boats[0] if boats is not None else None, code)
@@ -309,7 +311,7 @@ class StageRecorder:
         self.last_time_code = code
         self.frames += 1
 
-    def _boat_frame(self, owner, positions, orientations, boom_angles, rudder_angles):
+    def _boat_frame(self, owner, positions, orientations, boom_angles, rudder_angles, sail_scales=None):
         """The boat arguments as float64 arrays, checked; None without boats."""
         n = self.boats
         if n == 0:
@@ -337,8 +339,12 @@ class StageRecorder:
         norm = np.linalg.norm(rotation, axis=1, keepdims=True)
         if np.any(norm < 1e-6):
             raise ValueError(f"{owner}: orientations must be non-zero quaternions (x, y, z, w)")
+        scales = rows("sail_scales", sail_scales, None, 1.0)
+        if np.any(scales <= 0.0) or np.any(scales > 1.0):
+            raise ValueError(f"{owner}: sail_scales must lie in (0, 1] (a reef's linear factor), got "
+                             f"{scales.min()} to {scales.max()}")
         return (where, rotation / norm, rows("boom_angles", boom_angles, None, 0.0),
-                rows("rudder_angles", rudder_angles, None, 0.0))
+                rows("rudder_angles", rudder_angles, None, 0.0), scales)
 
     def _start(self, positions: np.ndarray | None, code: float) -> None:
         """At the first frame: fix the ocean's extent and lattice, and the wind arrow's place."""
@@ -496,7 +502,8 @@ class StageRecorder:
 
 def record_eboat(recorder: StageRecorder, simulator, time_s: float | None = None) -> None:
     """Add the current state of an ``EBoatSimulator`` to ``recorder`` as a frame at ``time_s`` [s] (default:
-    the simulator's time): positions, orientations, boom and rudder angles, one host copy of each."""
+    the simulator's time): positions, orientations, boom and rudder angles and each sail's reef, one host copy
+    of each."""
     state = simulator.state
     recorder.record(simulator.time if time_s is None else time_s, state.position.numpy(), state.orientation.numpy(),
-                    state.boom_angle.numpy(), state.rudder_angle.numpy())
+                    state.boom_angle.numpy(), state.rudder_angle.numpy(), sail_scales=simulator.sail_scales())

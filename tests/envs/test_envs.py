@@ -32,7 +32,8 @@ def flat(task):
 def test_buffers_are_zero_copy_views_with_the_documented_shapes(device, config):
     env = SailingEnv(fast(config()), 6, device=device)
     b = env.buffers
-    p = {"seed": 5, "plus": 15}[env.task.observation.value]
+    # The set's values, then the reef level on every task with a reef rule (all but the seed's waypoint task).
+    p = {"seed": 5, "plus": 15}[env.task.observation.value] + (0 if config is WaypointConfig else 1)
     assert b.policy_obs.shape == (6, p) and b.critic_obs.shape == (6, p + 12)
     assert b.actions.shape == (6, 3) and b.reward.shape == (6,) and b.target.shape == (6, 3)
     assert b.done.dtype == torch.bool and b.time_out.dtype == torch.bool and b.episode_length.dtype == torch.int32

@@ -18,6 +18,7 @@ from pxr import Usd, UsdGeom  # noqa: E402
 
 import ocean_warp as ow  # noqa: E402
 from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, record_eboat,
                             render_preview, validate_stage, write_ocean_loop)
 
@@ -824,3 +825,58 @@ def test_each_boats_obstacles_in_the_stage(tmp_path):
     np.testing.assert_allclose(marks, sorted(route.tolist()), atol=1e-4)
     assert not stage.GetPrimAtPath(ROUTE_PATH)
     assert validate_stage(files["stage"]) == []
+
+
+@pytest.mark.parametrize("instanced", [False, True], ids=["prim_per_boat", "instanced"])
+def test_each_boats_sail_is_drawn_at_its_reef_about_its_tack(device, tmp_path, instanced):
+    """Three real boats at reef levels (0, 1, 2), then (2, 0, 1) after a reset: the sail's mesh of the stage's
+    prototype, taken through USD's world transform of each boat's sail (the prim's, or the Sails instancer's
+    instance), lands where the boat's pose, the boom's pivot and angle, and the sail scaled by s = sqrt(A_k /
+    3.188) about its tack (the foot of its luff at the mast) put it, frame by frame."""
+    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=6.0, direction=1.0)), 3, device=device)
+    parts = eboat_parts(sim.config.boat)
+    tack = parts.sail_tack
+    areas = np.array([3.188, 2.0, 1.15])
+    path = tmp_path / "reef.usda"
+    frames = []
+    with StageRecorder.for_eboat(path, sim, fps=FPS, ocean=None, wind=None,
+                                 fleet=FleetDrawing(3, instanced=instanced, boat=sim.config.boat)) as recorder:
+        for levels in ([0, 1, 2], [2, 0, 1]):
+            sim.reset(position=[[0.0, 0.0, 0.05], [10.0, 5.0, 0.05], [-8.0, 12.0, 0.05]], heading=[0.0, 1.2, 2.5],
+                      sheet=0.8, reef_level=levels)
+            for _ in range(4):
+                sim.step()
+            record_eboat(recorder, sim)
+            state = sim.state
+            frames.append(dict(time=sim.time, levels=levels, position=state.position.numpy().astype(np.float64),
+                               orientation=state.orientation.numpy().astype(np.float64),
+                               boom=state.boom_angle.numpy().astype(np.float64)))
+    stage = Usd.Stage.Open(str(path))
+    mesh = UsdGeom.Mesh.Get(stage, "/Library/EBoat/Reef/Sail")
+    local = np.array(mesh.GetPointsAttr().Get(), dtype=np.float64)
+    np.testing.assert_allclose(local, parts.sail.points - tack, atol=1e-6)  # the full sail, its tack at 0
+    for frame in frames:
+        code = frame["time"] * TCPS
+        if instanced:
+            instancer = UsdGeom.PointInstancer(stage.GetPrimAtPath("/World/Fleet/Sails"))
+            matrices = [np.array(m) for m in instancer.ComputeInstanceTransformsAtTime(code, code)]
+        else:
+            cache = UsdGeom.XformCache(code)
+            matrices = [np.array(cache.GetLocalToWorldTransform(stage.GetPrimAtPath(f"/World/Fleet/Boat_{i:04d}/Boom/"
+                                                                                     "Reef"))) for i in range(3)]
+        assert len(matrices) == 3
+        for i, matrix in enumerate(matrices):
+            s = math.sqrt(areas[frame["levels"][i]] / 3.188)
+            drawn = np.c_[local, np.ones(len(local))] @ matrix
+            boom = Rotation.from_euler("z", -frame["boom"][i])
+            body = BOOM_PIVOT + boom.apply(tack + s * (parts.sail.points - tack))
+            expected = Rotation.from_quat(frame["orientation"][i]).apply(body) + frame["position"][i]
+            np.testing.assert_allclose(drawn[:, :3], expected, atol=2e-4)
+    assert validate_stage(str(path)) == []
+
+
+def test_bad_sail_scales_are_refused(tmp_path):
+    recorder = StageRecorder(tmp_path / "bad.usda", fps=FPS, fleet=FleetDrawing(2))
+    with pytest.raises(ValueError, match=r"sail_scales must lie in \(0, 1\]"):
+        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1.0]] * 2, sail_scales=[1.0, 1.2])
+    recorder.abort()

@@ -59,7 +59,7 @@ def tiny_mission(**changes) -> MissionConfig:
 
 
 def random_policy_file(path, *, constant_actions=None, task="EBoatMission-v0", observation="seed",
-                       num_obs=5) -> None:
+                       num_obs=6) -> None:
     """A seed-observation policy for the mission with random weights (or for ``task``, reading
     ``observation``, ``num_obs`` values); with ``constant_actions`` (3,), one whose output layer ignores the
     observation and always gives these actions."""
@@ -475,7 +475,8 @@ def test_a_policy_trained_on_another_task_gets_a_one_line_warning(tmp_path, caps
 
 
 @pytest.mark.parametrize("task, observation, num_obs, reads", [
-    ("EBoatAvoid-v0", "seed", 5 + 24, "29 values (the 'seed' set's 5 and 24 lidar sectors)"),
+    ("EBoatAvoid-v0", "seed", 5 + 24, "29 values (the 'seed' set's 5 and 24 the task appends: reef level, lidar "
+                                      "sectors)"),
     ("EBoatWaypointPlus-v0", "plus", 15, "15 values (the 'plus' set)"),
 ])
 def test_an_observation_mismatch_names_both_sets_and_sizes(task, observation, num_obs, reads, tmp_path):
@@ -484,8 +485,8 @@ def test_an_observation_mismatch_names_both_sets_and_sizes(task, observation, nu
     with pytest.raises(ValueError) as raised:
         PolicyController(load_policy(tmp_path / "policy.pt")).reset(env)
     assert str(raised.value) == (f"PolicyController: the policy (trained on {task}) reads {reads}, the task gives "
-                                 f"5 values (the 'seed' set): sail it on {task}, or pass a policy trained for this "
-                                 "task")
+                                 "6 values (the 'seed' set's 5 and 1 the task appends: reef level, lidar sectors): "
+                                 f"sail it on {task}, or pass a policy trained for this task")
 
 
 def test_cli_runs_the_mission(tmp_path, capsys):

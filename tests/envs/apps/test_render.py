@@ -4,6 +4,7 @@ are one-line errors that leave no file and no temporary file behind."""
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
 import os
 
@@ -12,6 +13,7 @@ import pytest
 from PIL import Image
 
 from ocean_warp import cli
+from ocean_warp.envs import AvoidConfig, SailingEnv, WaypointPlusConfig
 from ocean_warp.envs.apps import render
 
 TINY = ["--width", "64", "--height", "48", "--duration", "2", "--fps", "4", "--boats", "3", "--no-progress"]
@@ -211,3 +213,15 @@ def test_an_unknown_task_is_a_one_line_error(tmp_path, capsys):
     line = one_error_line(capsys, 2, exit_info)
     assert "--task: unknown task id 'EBoatNowhere-v0'; known: EBoatWaypoint-v0" in line
     assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("task", [WaypointPlusConfig, AvoidConfig])
+def test_the_rendered_boats_carry_their_reef(task):
+    """``render_scene`` (the fleet's scene, or the avoidance task's obstacle scene) reads every boat's reef level
+    from the simulator's state (the same array, so a reset's new levels are drawn at once) with the boat's table
+    of sail scales, sqrt(A_k / 3.188)."""
+    env = SailingEnv(dataclasses.replace(task(), episode_time=4.0), 3, device="cpu", seed=2)
+    scene, _ = render.render_scene(env)
+    assert scene.view.reef_level.ptr == env.simulator.state.reef_level.ptr
+    np.testing.assert_allclose(scene.view.reef_scale.numpy(), np.sqrt(np.array([3.188, 2.0, 1.15]) / 3.188),
+                               rtol=1e-6)

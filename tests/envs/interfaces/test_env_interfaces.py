@@ -288,9 +288,10 @@ def test_single_env_returns_the_final_observation(device):
 
 @pytest.mark.parametrize("task_id", TASK_IDS)
 def test_gymnasium_make_and_make_vec(task_id):
-    # the plus observation's 15 values; the seed's 5 (the avoidance tasks: then the lidar's 24 sectors)
-    policy_size = {"EBoatWaypointPlus-v0": 15, "EBoatMissionSail-v0": 15, "EBoatAvoid-v0": 5 + 24,
-                   "EBoatAvoidSail-v0": 5 + 24}.get(task_id, 5)
+    # the plus observation's 15 values or the seed's 5, then the reef level (every task but the seed's waypoint
+    # task), then the lidar's 24 sectors (the avoidance tasks)
+    policy_size = {"EBoatWaypointPlus-v0": 15 + 1, "EBoatMissionSail-v0": 15 + 1, "EBoatMission-v0": 5 + 1,
+                   "EBoatAvoid-v0": 5 + 1 + 24, "EBoatAvoidSail-v0": 5 + 1 + 24}.get(task_id, 5)
     single = gym.make(f"ocean_warp/{task_id}")
     assert isinstance(single.unwrapped, SailingEnvSingle)
     assert single.observation_space.shape == (policy_size,)
@@ -388,9 +389,10 @@ def test_envs_import_without_sb3():
 @pytest.mark.parametrize("task_id", ["EBoatAvoid-v0", "EBoatAvoidSail-v0"])
 def test_avoid_tasks_through_every_interface(task_id, one_torch_thread):
     """The registered avoidance tasks (mesh hull, obstacles, contact, lidar) pass gymnasium's ``check_env``
-    and run through rsl-rl's and SB3's adapters: 5 seed values + 24 lidar sectors for the policy, the
-    critic's 12 privileged values on top, and the lidar's sectors (nearest return / 50 m) in [0, 1]."""
-    policy_size, critic_size = 5 + 24, 5 + 12 + 24
+    and run through rsl-rl's and SB3's adapters: 5 seed values, the reef level and 24 lidar sectors for the
+    policy, the critic's 12 privileged values on top, and the lidar's sectors (nearest return / 50 m) in [0,
+    1]."""
+    policy_size, critic_size = 5 + 1 + 24, 5 + 1 + 12 + 24
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the unbounded observation Box is deliberate
         check_env(SailingEnvSingle(task_id, max_episode_steps=4))
@@ -399,9 +401,9 @@ def test_avoid_tasks_through_every_interface(task_id, one_torch_thread):
     observations = env.get_observations()
     assert observations["policy"].shape == (2, policy_size) and observations["critic"].shape == (2, critic_size)
     observations, rewards, dones, extras = env.step(torch.tensor([[0.5, 0.0, 0.1], [-0.2, 0.3, -0.4]]))
-    sectors = observations["policy"][:, 5:]
+    sectors = observations["policy"][:, 6:]
     assert torch.all((sectors >= 0.0) & (sectors <= 1.0)) and torch.all(torch.isfinite(rewards))
-    torch.testing.assert_close(observations["critic"][:, 17:], sectors, rtol=0.0, atol=0.0)
+    torch.testing.assert_close(observations["critic"][:, 18:], sectors, rtol=0.0, atol=0.0)
 
     pytest.importorskip("stable_baselines3")
     from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv

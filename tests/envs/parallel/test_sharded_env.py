@@ -120,7 +120,7 @@ def test_an_obstacle_course_over_workers_matches_one_process():
     single = SailingEnv(task, 5, device="cpu", seed=4)
     generator = torch.Generator().manual_seed(2)
     with ShardedSailingEnv(task, 5, workers=2, seed=4) as sharded:
-        assert sharded.buffers.obstacles.shape == (5, 12, 4) and sharded.buffers.policy_obs.shape == (5, 5 + 24)
+        assert sharded.buffers.obstacles.shape == (5, 12, 4) and sharded.buffers.policy_obs.shape == (5, 5 + 1 + 24)
         for step in range(5):
             if step == 3:
                 single.reset(seed=8)

@@ -44,6 +44,8 @@ from tests.hull_setups import rotation_matrix
 STERN, BOW, CAPSULE_RADIUS = boat_capsule(eboat_parts(hull_detail=1).hull.points)
 """The boat's capsule in its body frame (the contact's and the proximity term's, ``ContactConfig.radius`` None)."""
 SEED_OBS, SECTORS, PRIVILEGED = 5, 24, 12
+AHEAD = SEED_OBS + 1
+"""Policy values before the lidar's sectors: the seed's five and the reef level (the avoidance tasks' reef rule)."""
 """The seed observation's values, the avoidance task's lidar sectors, the critic's extra values."""
 BUOY, PILE = 1, 2
 """Kinds in ``env.buffers.obstacles``."""
@@ -403,29 +405,31 @@ def test_lidar_sectors_in_the_observation_against_analytic_returns(device, rng):
         np.testing.assert_allclose(ranges[e][certain], expected[certain], atol=1e-3)
     nearest = ranges.reshape(env.num_envs, SECTORS, -1).min(axis=2) / config.max_range
     policy, critic = b.policy_obs.cpu().numpy(), b.critic_obs.cpu().numpy()
-    assert policy.shape == (8, SEED_OBS + SECTORS) and critic.shape == (8, SEED_OBS + PRIVILEGED + SECTORS)
-    np.testing.assert_allclose(policy[:, SEED_OBS:], nearest, rtol=1e-6)
-    np.testing.assert_array_equal(policy[:, SEED_OBS:], lidar.downsampled(SECTORS).cpu().numpy())
-    np.testing.assert_array_equal(critic[:, SEED_OBS + PRIVILEGED:], policy[:, SEED_OBS:])
-    np.testing.assert_array_equal(critic[:, :SEED_OBS], policy[:, :SEED_OBS])
-    assert np.all(policy[:, SEED_OBS:].min(axis=1) < 36.0 / 50.0), "every boat sees a pile"
-    assert np.all(policy[:, SEED_OBS:].max(axis=1) == 1.0), "and open water elsewhere"
+    assert policy.shape == (8, AHEAD + SECTORS) and critic.shape == (8, AHEAD + PRIVILEGED + SECTORS)
+    np.testing.assert_allclose(policy[:, AHEAD:], nearest, rtol=1e-6)
+    np.testing.assert_array_equal(policy[:, AHEAD:], lidar.downsampled(SECTORS).cpu().numpy())
+    np.testing.assert_array_equal(critic[:, AHEAD + PRIVILEGED:], policy[:, AHEAD:])
+    np.testing.assert_array_equal(critic[:, :AHEAD], policy[:, :AHEAD])
+    assert np.all(policy[:, AHEAD:].min(axis=1) < 36.0 / 50.0), "every boat sees a pile"
+    assert np.all(policy[:, AHEAD:].max(axis=1) == 1.0), "and open water elsewhere"
 
 
 @pytest.mark.parametrize("config", [AvoidConfig, AvoidSailConfig])
 def test_avoid_task_observations_carry_the_lidar_sectors(device, rng, config):
     """The registered tasks as they are (mesh hull, default layouts), two decisions of random actions: the
-    policy's observation is the seed's 5 values then the lidar's 24 sectors, the critic's the same 5, the 12
-    privileged values, then the same 24 sectors; each sector in [0, 1]."""
+    policy's observation is the seed's 5 values and the reef level, then the lidar's 24 sectors, the critic's
+    the same 6, the 12 privileged values, then the same 24 sectors; each sector in [0, 1]."""
     env = SailingEnv(config(episode_time=1.0), 4, device=device, seed=int(rng.integers(1 << 30)))
     for _ in range(2):
         env.step(torch.from_numpy(rng.uniform(-1.0, 1.0, (4, 3)).astype(np.float32)).to(env.torch_device))
         b = env.buffers
         sectors = env.obstacles.lidar.downsampled(SECTORS)
-        assert b.policy_obs.shape == (4, SEED_OBS + SECTORS)
-        assert torch.equal(b.policy_obs[:, SEED_OBS:], sectors)
-        assert torch.equal(b.critic_obs[:, SEED_OBS + PRIVILEGED:], sectors)
-        assert torch.equal(b.critic_obs[:, :SEED_OBS], b.policy_obs[:, :SEED_OBS])
+        assert b.policy_obs.shape == (4, AHEAD + SECTORS)
+        assert torch.equal(b.policy_obs[:, AHEAD:], sectors)
+        assert torch.equal(b.critic_obs[:, AHEAD + PRIVILEGED:], sectors)
+        assert torch.equal(b.critic_obs[:, :AHEAD], b.policy_obs[:, :AHEAD])
+        levels = env.simulator.state.reef_level.numpy()  # the rule's, from each run's 3-8 m/s: 0 or 1 (2 at 8)
+        np.testing.assert_array_equal(b.policy_obs[:, SEED_OBS].cpu().numpy(), levels / 2.0)
         assert bool(((sectors >= 0.0) & (sectors <= 1.0)).all())
         assert bool(b.done.all())  # one-decision episodes: a new layout, start and scan every step
     assert b.obstacles.shape == (4, 12, 4)

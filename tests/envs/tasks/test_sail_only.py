@@ -113,7 +113,7 @@ def test_propeller_off_ignores_a0_and_rewards_level_zero(rng):
 def test_gymnasium_make_and_check_env():
     env = gym.make(f"ocean_warp/{SAIL_ID}")
     assert isinstance(env.unwrapped, SailingEnvSingle) and env.unwrapped.env.task.propeller is False
-    assert env.action_space.shape == (3,) and env.observation_space.shape == (15,)  # the plus observation
+    assert env.action_space.shape == (3,) and env.observation_space.shape == (16,)  # plus and reef level
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the unbounded observation Box is deliberate
         check_env(env.unwrapped)

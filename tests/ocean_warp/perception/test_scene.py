@@ -231,3 +231,50 @@ def test_bad_scenes_and_casts_are_clear_errors(device):
         scene.cast([[0, 0, 1]], [[0, 0, 0]])
     with pytest.raises(ValueError, match=r"envs must lie in \[0, 1\)"):
         scene.cast([[0, 0, 1]], [[1, 0, 0]], envs=[3])
+
+
+def test_a_reefed_sail_is_hit_where_its_scaled_triangles_are(device, rng):
+    """Boat 1 at reef level 0, 1 or 2 (a random boom angle and heading): rays from boat 0 toward it hit it where
+    a numpy ray-triangle intersection over the hull, keel and mast, the spar and the sail scaled by s =
+    sqrt(A_k / 3.188) about its tack says; rays at the full sail's head, above a reef's, miss a reefed boat's
+    sail. The scene reads the levels from the boats' array (bound, not copied): the same scene redrawn."""
+    heading, boom = rng.uniform(-math.pi, math.pi), rng.uniform(-0.8, 0.8)
+    other = np.array([rng.uniform(8.0, 15.0), rng.uniform(-3.0, 3.0), 0.0])
+    levels = wp.zeros(2, dtype=int, device=device)
+    scene = Scene(calm_ocean(device), envs=1, water_visible=False, reef_level=levels,
+                  **boats(device, [(0, 0, 0, 0.3, 0.0), (*other, heading, boom)], envs=[0, 0]))
+    parts = eboat_parts(hull_detail=1)
+    rotation = rotation_matrix(quaternion_from_roll_pitch_yaw(np.array([[0.0, 0.0, heading]]))[0])
+    boom_turn = rotation_matrix(quaternion_from_roll_pitch_yaw(np.array([[0.0, 0.0, -boom]]))[0])
+    body = concatenate(parts.hull, parts.keel, parts.mast)
+    world_body = body.points @ rotation.T + other
+    world_spar = (parts.spar.points @ boom_turn.T + parts.boom_pivot) @ rotation.T + other
+    full_sail = (parts.sail.points @ boom_turn.T + parts.boom_pivot) @ rotation.T + other
+    eye = np.array([0.0, 0.0, 1.5])
+    for level, area in enumerate((3.188, 2.0, 1.15)):
+        levels.assign(np.array([0, level], dtype=np.int32))
+        s = math.sqrt(area / 3.188)
+        tack = parts.sail_tack
+        sail = ((tack + s * (parts.sail.points - tack)) @ boom_turn.T + parts.boom_pivot) @ rotation.T + other
+        triangles = parts.sail.triangles()
+        # At the centroids of the reefed sail's triangles and of the full sail's, and about the boat.
+        targets = np.concatenate([sail[triangles].mean(axis=1), full_sail[triangles].mean(axis=1),
+                                  other + rng.uniform([-1.2, -0.4, 0.5], [1.2, 0.4, 3.0], size=(12, 3))])
+        directions = (targets - eye) / np.linalg.norm(targets - eye, axis=1, keepdims=True)
+        hit = scene.cast(np.tile(eye, (len(targets), 1)), directions, own_boat=0)
+        for r in range(len(targets)):
+            expected = np.nanmin([ray_triangles(eye, directions[r], world_body, body.triangles()),
+                                  ray_triangles(eye, directions[r], world_spar, parts.spar.triangles()),
+                                  ray_triangles(eye, directions[r], sail, triangles), np.inf])
+            if not np.isfinite(expected):
+                assert hit["kind"][r] == HIT_NONE, (level, r)
+                continue
+            assert hit["kind"][r] == HIT_BOAT and hit["index"][r] == 1, (level, r)
+            assert hit["distance"][r] == pytest.approx(expected, abs=1e-3), (level, r)
+        if level > 0:  # the full sail's head region is empty air at a reef (or the mast, behind)
+            head = full_sail[np.argmax(full_sail[:, 2])] + np.array([0.0, 0.0, -0.3])
+            direction = (head - eye) / np.linalg.norm(head - eye)
+            reached = ray_triangles(eye, direction, full_sail, triangles)
+            assert np.isfinite(reached) and np.isnan(ray_triangles(eye, direction, sail, triangles))
+            seen = scene.cast(eye[None, :], direction[None, :], own_boat=0)
+            assert seen["kind"][0] == HIT_NONE or abs(seen["distance"][0] - reached) > 0.01
