@@ -316,7 +316,8 @@ class SailingEnv:
         wind and leg ranges); the decision's graph is captured anew at the next step. Episodes under way are
         not touched."""
         self.task = dataclasses.replace(self.task, start=start)
-        self.start_distribution = _start_distribution(self.task, self.start_distribution.start_height)
+        self.start_distribution = _start_distribution(self.task, self.start_distribution.start_height,
+                                                      self.device)
         self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
                                                    capture=self.task.simulator.capture_graph)
 

@@ -209,14 +209,14 @@ class TrainConfig:
         return self.num_envs_cuda if device_is_cuda else self.num_envs_cpu
 
 
-def mission_practice(base: MissionConfig | None = None) -> MissionConfig:
+def mission_practice(base: MissionConfig | None = None, wind_speed: tuple[float, float] = (8.0, 12.0)) -> MissionConfig:
     """Single legs for the mission ``base`` (default ``MissionConfig()``; ``MissionSailConfig()`` for the
     sail-only one): from rest or under way, any heading, to one waypoint 50-150 m away at any bearing to a
-    gusty 8-12 m/s wind (the mission's legs are 100 and 141 m, reached, run and beaten), on the mission's
-    boat and sea, with the boat's mass and foils varied by 5 % and the reef level drawn at random a quarter of
-    the time (:func:`with_training_reef`)."""
+    gusty wind of ``wind_speed`` (low, high) [m/s] (the mission's legs are 100 and 141 m, reached, run and
+    beaten), on the mission's boat and sea, with the boat's mass and foils varied by 5 % and the reef level
+    drawn at random a quarter of the time (:func:`with_training_reef`)."""
     base = base if base is not None else MissionConfig()
-    start = StartConfig(heading_deg=(-180.0, 180.0), heading_step_deg=0.0, wind_speed=(8.0, 12.0),
+    start = StartConfig(heading_deg=(-180.0, 180.0), heading_step_deg=0.0, wind_speed=wind_speed,
                         wind_direction_deg=(-180.0, 180.0), wind_direction_step_deg=0.0, gust_scale=(0.5, 1.5),
                         waypoint_distance=(50.0, 150.0), waypoint_bearing_deg=(-180.0, 180.0), position_jitter=1.0,
                         surge_speed=(0.0, 1.5), sheet_deg=(0.0, 90.0), foil_variation=0.05)
@@ -242,8 +242,18 @@ def _mission() -> TrainConfig:
                        curriculum=CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0.75))
 
 
+SAIL_PRACTICE_WIND = (3.0, 12.0)
+"""True wind [m/s] of the sail-only mission's practice legs: every wind its missions are sailed in, and more."""
+SAIL_CURRICULUM = CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0.75,
+                                   wind_speeds=((4.0, 8.0), SAIL_PRACTICE_WIND, SAIL_PRACTICE_WIND),
+                                   waypoint_distances=((30.0, 80.0), (50.0, 150.0), (50.0, 150.0)))
+"""The sail-only mission's curriculum: short legs in moderate wind and a low sea first, then every wind, leg
+and sea."""
+
+
 def _mission_sail() -> TrainConfig:
-    return dataclasses.replace(_mission(), task="EBoatMissionSail-v0", train_task=mission_practice(MissionSailConfig()))
+    return dataclasses.replace(_mission(), task="EBoatMissionSail-v0", curriculum=SAIL_CURRICULUM,
+                               train_task=mission_practice(MissionSailConfig(), wind_speed=SAIL_PRACTICE_WIND))
 
 
 def _avoid() -> TrainConfig:
