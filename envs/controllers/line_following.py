@@ -17,7 +17,11 @@ position, theta its heading and psi the direction the true wind blows toward:
   delta_r_max sin(theta_bar - theta) while the error is under 90 deg, else the full delta_r_max toward
   theta_bar; delta_r_max (``rudder_limit``) is held below the rudder's stall;
 - the sheet (boom limit) (pi / 2) ((cos(psi - theta_bar) + 1) / 2)^(log(pi / (2 beta)) / log 2): sheeted in
-  head to wind, beta (``beam_reach_sheet``) on a beam reach, let out dead downwind.
+  head to wind, beta (``beam_reach_sheet``) on a beam reach, let out dead downwind. Here it is evaluated at
+  the boat's heading theta rather than theta_bar: at the start of the mission (BCDACA, 5 m/s) a boat that
+  had rounded up to a beam reach, 55 deg above its desired broad reach, had its boom let out to 80 deg for
+  the broad reach, luffed, lay at 0.1 m/s with its rudder hard over, and drifted 1500 s without steerage;
+  trimmed for its own heading, it gathered way and bore away in 20 s.
 
 The paper's rudder sign: its boat turns with theta' = omega and omega' carrying -cos(delta_r) times the
 rudder's force, itself proportional to sin(delta_r), so a positive delta_r turns the boat clockwise, and

@@ -296,7 +296,8 @@ def follow_lines(
         # Going astern, the rudder's force turns the boat the other way.
         rudder = -rudder
 
-    sheet = eased_sheet(sheet_law(p.beam_reach_sheet, psi, theta_bar), roll_angle(rot), p.heel_limit, p.heel_ease)
+    # The law at the boat's own heading, not the desired one (see LineFollower's docstring).
+    sheet = eased_sheet(sheet_law(p.beam_reach_sheet, psi, theta), roll_angle(rot), p.heel_limit, p.heel_ease)
     sheet = wp.clamp(sheet, p.min_sheet, p.max_sheet)
 
     level = int(0)
