@@ -21,7 +21,15 @@ position, theta its heading and psi the direction the true wind blows toward:
   the boat's heading theta rather than theta_bar: at the start of the mission (BCDACA, 5 m/s) a boat that
   had rounded up to a beam reach, 55 deg above its desired broad reach, had its boom let out to 80 deg for
   the broad reach, luffed, lay at 0.1 m/s with its rudder hard over, and drifted 1500 s without steerage;
-  trimmed for its own heading, it gathered way and bore away in 20 s.
+  trimmed for its own heading, it gathered way and bore away in 20 s. While the bow lies inside the no-go
+  zone (within zeta of the wind's source: through a tack, or in irons) the sheet is the law's at theta_bar
+  again: the law at the heading sheets hard in there, which held a boat in irons for 200 s. Neither gets
+  the E-Boat out of irons every time (see "Known limits" below).
+
+Known limits (BCDACA under sail, 5 m/s, Hs 0.3 m, CPU, seed 0, 2 runs: 1 completed in 572 s; the other lay
+in irons from its start at rest, 45 deg off the wind, backing and filling at +-0.3 m/s): with little way on,
+the rudder cannot bear the E-Boat away from the wind against its weather helm, and neither the sheet at
+the close-hauled trim, nor let fly, nor the rudder reversed astern freed it within 100 s in trials.
 
 The paper's rudder sign: its boat turns with theta' = omega and omega' carrying -cos(delta_r) times the
 rudder's force, itself proportional to sin(delta_r), so a positive delta_r turns the boat clockwise, and
@@ -40,7 +48,7 @@ What this controller adds to the law, each for the E-Boat and each documented at
   1 m, ``corridor_half_width``)) so that a beating boat crosses the line within the task's reach radius of b;
   a boat past b's abeam follows the line mirrored about b, back to it;
 - ``run_angle``: an optional no-go zone downwind, with the same corridor hysteresis (off at pi);
-- the rudder reversed when the boat moves astern;
+- the rudder reversed when the boat moves astern faster than ``astern_speed``;
 - ``assist_level``, ``assist_speed``: the motor on beats, through forced turns and below a speed, on a
   task that allows a motor (``LineFollowingConfig.sail_only`` and ``AutopilotController`` set it to 0 where
   the task has none).
@@ -107,10 +115,12 @@ class LineFollowingConfig:
     """Deepest true wind angle sailed downwind [rad], in (90, 180] deg: a nominal heading deeper than this
     (or a line deeper than this, inside the corridor) is sailed as a broad reach at this angle on gybe q.
     pi: no such zone (the paper's law: a dead run where the line runs dead downwind)."""
-    rudder_limit: float = 15.0 * _DEGREE
+    rudder_limit: float = 25.0 * _DEGREE
     """delta_r_max [rad], in (0, 60 deg]: the largest rudder. The real E-Boat's rudder (a lifting surface,
-    ``ocean_warp.lifting_surface``) reaches its largest attached lift at 15.0 deg of attack; a turning
-    boat's rudder meets the flow at less than its angle, so up to this it stays below stall."""
+    ``ocean_warp.lifting_surface``) reaches its largest attached lift at 15.0 deg of attack, but a turning
+    boat's rudder meets the flow at less than its angle (at 1 m/s and 0.2 rad/s of yaw, 12 deg less: the
+    stock is 1.09 m aft), so 25 deg keeps it near stall through a turn. 15 deg could not bear the E-Boat away
+    out of irons in 5 m/s (BCDACA, seed 0, run 0: 400 s in irons, lost); 25 deg completed that run."""
     rudder_gain: float = 2.5
     """k, in (0, 100]: the rudder is delta_r_max clamp(k sin(theta_bar - theta), -1, 1) while the error is
     under 90 deg (the paper's law: k = 1). With k = 1 the E-Boat held a broad reach 10 deg off its desired
@@ -137,6 +147,10 @@ class LineFollowingConfig:
     ``AutopilotController`` sets it to ``MOTOR_ASSIST_LEVEL`` on tasks with a propeller."""
     assist_speed: float = 0.5
     """Speed ahead [m/s] (>= 0, <= 100) below which the motor assists."""
+    astern_speed: float = 0.2
+    """Speed astern [m/s] (>= 0, <= 100) beyond which the rudder is reversed. Not 0: a boat in irons rocks
+    between +-0.1 m/s, and reversing at every sign change held its rudder flapping from side to side for
+    200 s (BCDACA, 5 m/s)."""
     avoidance: bool = True
     """Steer clear of the lidar's returns where the boats carry a lidar (the legacy autopilot's collision
     cones, with its default ranges); False: follow the lines regardless."""
@@ -160,6 +174,7 @@ class LineFollowingConfig:
             ("tack_timeout", 0.0, 3600.0, "[", "]"),
             ("turn_release_angle", 0.0, 90.0 * _DEGREE, "(", ")"),
             ("assist_speed", 0.0, 100.0, "[", "]"),
+            ("astern_speed", 0.0, 100.0, "[", "]"),
         )
         for name, low, high, left, right in checks:
             value = require_in_range(_OWNER, name, getattr(self, name), low, high)

@@ -54,6 +54,7 @@ class LineFollowingParameters:
     turn_release_angle: float
     assist_level: int
     assist_speed: float
+    astern_speed: float
 
 
 @wp.func
@@ -292,12 +293,18 @@ def follow_lines(
     else:
         rudder = wp.clamp(rudder_law(p.rudder_limit, p.rudder_gain, theta, theta_bar) - p.yaw_rate_gain * nu[5],
                           -p.rudder_limit, p.rudder_limit)
-    if nu[0] < 0.0:
+    if nu[0] < -p.astern_speed and forced == 0:
         # Going astern, the rudder's force turns the boat the other way.
         rudder = -rudder
 
-    # The law at the boat's own heading, not the desired one (see LineFollower's docstring).
-    sheet = eased_sheet(sheet_law(p.beam_reach_sheet, psi, theta), roll_angle(rot), p.heel_limit, p.heel_ease)
+    # The law at the boat's own heading, but at the desired one while the bow is inside the no-go zone
+    # (through a tack, or in irons), where the law at the heading sheets hard in and pins the bow to the wind
+    # (see LineFollower's docstring).
+    trim_heading = theta
+    if wp.cos(psi - theta) + wp.cos(p.close_hauled_angle) < 0.0:
+        trim_heading = theta_bar
+    sheet = eased_sheet(sheet_law(p.beam_reach_sheet, psi, trim_heading), roll_angle(rot), p.heel_limit,
+                        p.heel_ease)
     sheet = wp.clamp(sheet, p.min_sheet, p.max_sheet)
 
     level = int(0)

@@ -336,15 +336,17 @@ def test_the_rudder_turns_the_boat_the_way_the_law_asks(device):
     """Two boats reaching north (wind toward +x) from the same start, on lines to (+-100, 300) m: the line to
     the east asks for a turn clockwise (its nominal heading 18.4 deg to starboard), the one to the west
     counter-clockwise. The first rudders have those signs (ours: negative to starboard), and the simulated
-    boats turn that way: yaw rate < 0 for the first after the start's transient (the sail filling rounds both
-    up in the first second), > 0 for the second, which heads more than 10 deg further to port after 2 s."""
-    config = LineFollowingConfig(yaw_rate_gain=0.0)
-    starboard, _ = sail(device, math.pi / 2, (100.0, 300.0), 3.0, config=config)
-    port, _ = sail(device, math.pi / 2, (-100.0, 300.0), 3.0, config=config)
+    boats turn that way: the one sent to port heads more than 5 deg further to port than the other from the
+    second decision on (the only difference between them is the rudder), and the one sent to starboard, once
+    the start's transient is over (the sail filling rounds both up for a second or two), turns clockwise
+    (yaw rate < 0) and ends more than 3 deg to starboard of north."""
+    config = LineFollowingConfig(yaw_rate_gain=0.0, rudder_limit=15.0 * DEG)
+    starboard, _ = sail(device, math.pi / 2, (100.0, 300.0), 5.0, config=config)
+    port, _ = sail(device, math.pi / 2, (-100.0, 300.0), 5.0, config=config)
     assert starboard["rudder"][0] < -0.1 and port["rudder"][0] > 0.1  # 15 sin(18.4 deg) x 2.5 = 11.9 deg
-    assert np.all(starboard["rudder"] < 0.0) and np.all(starboard["yaw_rate"][1:] < 0.0)
-    assert np.all(port["yaw_rate"][:2] > 0.0)
-    assert wrap(port["heading"][1] - starboard["heading"][1]) > 10.0 * DEG
+    assert np.all(starboard["rudder"] < 0.0) and np.all(port["rudder"][:2] > 0.0)
+    assert np.all(wrap(port["heading"][1:] - starboard["heading"][1:]) > 5.0 * DEG)
+    assert np.all(starboard["yaw_rate"][-2:] < 0.0)
     assert wrap(starboard["heading"][-1] - math.pi / 2) < -3.0 * DEG
 
 
@@ -360,3 +362,19 @@ def test_beats_to_a_waypoint_dead_upwind(device):
     assert np.all(log["status"] == 0)
     assert np.abs(log["position"][:, 1]).max() < config.corridor_half_width + 5.0
     assert np.all(np.abs(wrap(log["course"] - math.pi)) >= config.close_hauled_angle - 1e-4)
+
+
+def test_line_follower_clears_a_pile_dead_ahead():
+    """The avoidance task's pile on the line (as in test_avoidance): following the line blindly every boat hits
+    it; with the legacy autopilot's collision cones moving the target first, none does and each reaches the
+    waypoint beyond it (same seed: same starts, waves and gusts)."""
+    from ocean_warp.envs.sailing_env import SailingEnv
+
+    from .test_avoidance import _pile_ahead_task, _sail_first_episodes
+
+    env = SailingEnv(_pile_ahead_task(), 3, device="cpu", seed=3)
+    collided, _ = _sail_first_episodes(env, LineFollowingConfig(avoidance=False))
+    assert collided.all()
+    collided, reached = _sail_first_episodes(env, LineFollowingConfig())
+    assert not collided.any()
+    assert reached.all()
