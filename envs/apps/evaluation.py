@@ -131,7 +131,8 @@ from ..tasks.task_kernels import POLICY_OBS
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
 __all__ = ["Controller", "PolicyController", "AutopilotController", "AUTOPILOTS", "MOTOR_ASSIST_LEVEL",
-           "FixedController", "FleetController", "RecordedDecision", "RunPath", "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS",
+           "FixedController", "FleetController", "RecordedDecision", "RunPath", "ControllerResult", "MissionEvaluation",
+           "TABLE_COLUMNS", "RUN_COLUMNS",
            "DEFAULT_TASK", "evaluation_task", "mission_task", "sail_mission", "evaluate_mission", "main"]
 
 
@@ -238,7 +239,8 @@ class AutopilotController:
             raise ValueError(f"AutopilotController: config must be a LineFollowingConfig or an AutopilotConfig, "
                              f"got {config!r}")
         if autopilot is not None and autopilot not in AUTOPILOTS:
-            raise ValueError(f"AutopilotController: autopilot must be one of {', '.join(AUTOPILOTS)}, got {autopilot!r}")
+            raise ValueError(f"AutopilotController: autopilot must be one of {', '.join(AUTOPILOTS)}, "
+                             f"got {autopilot!r}")
         implied = None if config is None else ("line" if isinstance(config, LineFollowingConfig) else "legacy")
         if autopilot is not None and implied is not None and autopilot != implied:
             raise ValueError(f"AutopilotController: a {type(config).__name__} configures the {implied!r} autopilot, "

@@ -182,7 +182,8 @@ class LineFollowingConfig:
                 raise ValueError(f"{_OWNER}.{name} must be in {left}{low!r}, {high!r}{right}, got {value!r}")
             object.__setattr__(self, name, value)
         if self.max_sheet < self.min_sheet:
-            raise ValueError(f"{_OWNER}.max_sheet must be >= min_sheet ({self.min_sheet!r} rad), got {self.max_sheet!r}")
+            raise ValueError(f"{_OWNER}.max_sheet must be >= min_sheet ({self.min_sheet!r} rad), "
+                             f"got {self.max_sheet!r}")
         object.__setattr__(self, "assist_level", require_int_in_range(_OWNER, "assist_level", self.assist_level, 0, 5))
         if not isinstance(self.avoidance, bool):
             raise ValueError(f"{_OWNER}.avoidance must be True or False, got {self.avoidance!r}")
@@ -252,8 +253,8 @@ class LineFollower:
             self._legacy_parameters = legacy.parameters()
             self._avoidance_parameters = legacy.avoidance_parameters(self.lidar)
             self._azimuth = wp.array(np.asarray(self.lidar.azimuth, dtype=np.float32), dtype=float, device=self.device)
-            self.returns = wp.array(np.tile(np.array([0.0, 0.0, NO_RETURN_AGE], np.float32),
-                                            (self.count, len(self.lidar.azimuth), 1)), dtype=wp.vec3, device=self.device)
+            none = np.tile(np.array([0.0, 0.0, NO_RETURN_AGE], np.float32), (self.count, len(self.lidar.azimuth), 1))
+            self.returns = wp.array(none, dtype=wp.vec3, device=self.device)
             """(N, S) each sector's last return: world x, y [m] and its age [s]."""
 
     @classmethod

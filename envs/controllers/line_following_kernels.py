@@ -15,7 +15,8 @@ import warp as wp
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
 __all__ = ["LineFollowingParameters", "signed_distance", "nominal_heading", "update_tack", "desired_heading",
-           "favoured_tack", "rudder_law", "sheet_law", "eased_sheet", "roll_angle", "follow_lines", "reset_line_following",
+           "favoured_tack", "rudder_law", "sheet_law", "eased_sheet", "roll_angle", "follow_lines",
+           "reset_line_following",
            "MODE_NOMINAL", "MODE_CLOSE_HAULED", "MODE_RUN"]
 
 RUDDER_ACTION_SCALE = wp.constant(PI / 3.0)
