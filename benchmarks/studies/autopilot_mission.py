@@ -33,11 +33,13 @@ from ocean_warp.fleet import BoatStatus
 def run_mission(runs: int = 20, *, device="cpu", seed: int = 0, sea_state: float = 0.3,
                 time_limit: float | None = None, autopilot: AutopilotConfig | None = None,
                 task=None) -> dict[str, np.ndarray]:
-    """Sail ``runs`` missions at once (``ocean_warp.envs.apps.evaluation``'s runner, the autopilot only); per run:
+    """Sail ``runs`` missions at once (``ocean_warp.envs.apps.evaluation``'s runner, the legacy autopilot only, its
+    defaults where ``autopilot`` is None); per run:
     success, time [s], waypoints, the autopilot's own tack count, status bits at the end, time-out.
     ``task``: the mission config to start from (default ``MissionConfig()``)."""
     evaluation = evaluate_mission(None, runs, sea_state=sea_state, seed=seed, device=device, time_limit=time_limit,
-                                  autopilot=autopilot if autopilot is not None else True, progress=False, task=task)
+                                  autopilot=autopilot if autopilot is not None else "legacy", progress=False,
+                                  task=task)
     result = evaluation.results["autopilot"]
     return {"success": result.success.astype(float), "time": result.time_s, "waypoints": result.waypoints.astype(float),
             "tacks": result.own_tacks.astype(float), "status": result.status.astype(float),

@@ -24,10 +24,12 @@ starts and waypoints. A run's path is recorded from the start to the end of its 
 after the physics of the last decision, before the environment resets the run).
 
 The policy is --policy PATH, else the task's shipped policy (``ocean_warp.envs.training.policies``); for a task
-that has none (EBoatWaypointPlus-v0) eval says so in one line and sails the autopilot alone. On a task
-without propeller (EBoatMissionSail-v0: ``TaskConfig.propeller`` False) the autopilot sails without motor
-assist (``AutopilotConfig.sail_only()``), and the environment ignores any controller's propeller command
-(level 0).
+that has none (EBoatWaypointPlus-v0) eval says so in one line and sails the autopilot alone. The autopilot
+(named "autopilot" in every table) is --autopilot line (default), the line follower of Jaulin and Le Bars
+(``ocean_warp.envs.controllers.line_following``), or --autopilot legacy, the line-of-sight autopilot
+(``ocean_warp.envs.controllers.sailing_autopilot``). On a task without propeller (EBoatMissionSail-v0:
+``TaskConfig.propeller`` False) either sails without motor assist (the legacy one with
+``AutopilotConfig.sail_only()``), and the environment ignores any controller's propeller command (level 0).
 
 Written into --out (atomically):
   trajectories.png   all runs' paths, one panel per controller (same axes), over the waypoints (each run's
@@ -115,6 +117,7 @@ from ocean_warp.ocean_config import (SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_sign
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
+from ..controllers.line_following import LineFollower, LineFollowingConfig
 from ..controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
 from ..protocol import BatchedEnv
 from ..decision_hook import DecisionHook
@@ -127,8 +130,9 @@ from ..registration import DEFAULT_TASK, make_task_config, task_name
 from ..tasks.task_kernels import POLICY_OBS
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig, mission_waypoint_name
 
-__all__ = ["Controller", "PolicyController", "AutopilotController", "FixedController", "FleetController",
-           "RecordedDecision", "RunPath", "ControllerResult", "MissionEvaluation", "TABLE_COLUMNS", "RUN_COLUMNS",
+__all__ = ["Controller", "PolicyController", "AutopilotController", "AUTOPILOTS", "MOTOR_ASSIST_LEVEL",
+           "FixedController", "FleetController", "RecordedDecision", "RunPath", "ControllerResult", "MissionEvaluation",
+           "TABLE_COLUMNS", "RUN_COLUMNS",
            "DEFAULT_TASK", "evaluation_task", "mission_task", "sail_mission", "evaluate_mission", "main"]
 
 
@@ -209,23 +213,48 @@ class PolicyController:
             env.buffers.actions.copy_(self.policy(env.buffers.policy_obs))
 
 
-class AutopilotController:
-    """The classical :class:`~ocean_warp.envs.controllers.sailing_autopilot.SailingAutopilot` (``config`` None: its defaults)
-    sailing to each run's current waypoint (``env.buffers.target``), reading the boats from the buffers
-    (:meth:`SailingAutopilot.for_env`). It forgets a run's tack side, integrator and counters when the
-    run starts a new episode (``env.buffers.done`` of the last step). On a task without propeller
-    (``TaskConfig.propeller`` False) it sails without the motor: its config's ``assist_level`` and
-    ``propeller_level`` are set to 0 (the environment would ignore them anyway)."""
+AUTOPILOTS = ("line", "legacy")
+"""The classical controllers :class:`AutopilotController` sails: ``line`` the line follower (Jaulin and Le Bars;
+``ocean_warp.envs.controllers.line_following``), the default baseline; ``legacy`` the line-of-sight autopilot
+(``ocean_warp.envs.controllers.sailing_autopilot``)."""
+MOTOR_ASSIST_LEVEL = 5
+"""The line follower's propeller level on beats, through forced turns and at low speed, on a task with a
+propeller (``LineFollowingConfig.assist_level``), as the legacy autopilot's default assist."""
 
-    def __init__(self, config: AutopilotConfig | None = None, name: str = "autopilot"):
-        if config is not None and not isinstance(config, AutopilotConfig):
-            raise ValueError(f"AutopilotController: config must be an AutopilotConfig, got {config!r}")
+
+class AutopilotController:
+    """A classical controller sailing to each run's current waypoint (``env.buffers.target``), reading the
+    boats from the buffers: by default the line follower
+    (:class:`~ocean_warp.envs.controllers.line_following.LineFollower`, ``autopilot="line"``), or the legacy
+    :class:`~ocean_warp.envs.controllers.sailing_autopilot.SailingAutopilot` (``autopilot="legacy"``).
+    ``config``: a :class:`LineFollowingConfig` or an :class:`AutopilotConfig` (it picks the controller; None:
+    the defaults of ``autopilot``'s). Either is named "autopilot" in the results unless ``name`` says
+    otherwise. It forgets a run's line, tack side, integrator and counters when the run starts a new episode
+    (``env.buffers.done`` of the last step). On a task without propeller (``TaskConfig.propeller`` False) it
+    sails without the motor (assist and propeller levels 0; the environment would ignore them anyway); on one
+    with, the line follower's defaults assist at ``MOTOR_ASSIST_LEVEL``."""
+
+    def __init__(self, config: LineFollowingConfig | AutopilotConfig | None = None, name: str = "autopilot", *,
+                 autopilot: str | None = None):
+        if config is not None and not isinstance(config, (LineFollowingConfig, AutopilotConfig)):
+            raise ValueError(f"AutopilotController: config must be a LineFollowingConfig or an AutopilotConfig, "
+                             f"got {config!r}")
+        if autopilot is not None and autopilot not in AUTOPILOTS:
+            raise ValueError(f"AutopilotController: autopilot must be one of {', '.join(AUTOPILOTS)}, "
+                             f"got {autopilot!r}")
+        implied = None if config is None else ("line" if isinstance(config, LineFollowingConfig) else "legacy")
+        if autopilot is not None and implied is not None and autopilot != implied:
+            raise ValueError(f"AutopilotController: a {type(config).__name__} configures the {implied!r} autopilot, "
+                             f"not {autopilot!r}")
+        self.autopilot = implied or autopilot or "line"
+        """Which controller sails: "line" or "legacy"."""
         self.config = config
         self.name = name
-        self.pilot: SailingAutopilot | None = None
+        self.pilot: LineFollower | SailingAutopilot | None = None
 
     def reset(self, env: BatchedEnv) -> None:
-        self.pilot = SailingAutopilot.for_env(env, self.config_for(env.task))
+        kind = LineFollower if self.autopilot == "line" else SailingAutopilot
+        self.pilot = kind.for_env(env, self.config_for(env.task))
         self.pilot.reset()
         buffers = env.buffers
         self._targets = wp.from_torch(buffers.target, dtype=wp.vec3)
@@ -233,10 +262,16 @@ class AutopilotController:
         self._restarted = torch.zeros(env.num_envs, dtype=torch.int32, device=env.torch_device)
         self._restarted_mask = wp.from_torch(self._restarted)
 
-    def config_for(self, task: TaskConfig) -> AutopilotConfig:
-        """The autopilot's config on ``task``: this controller's, with the motor off (assist and propeller
-        level 0) where the task has no propeller; None: the defaults, or ``AutopilotConfig.sail_only()``
-        where the task has no propeller, with the heading integrator stepping at the task's decision period [s]."""
+    def config_for(self, task: TaskConfig) -> LineFollowingConfig | AutopilotConfig:
+        """The controller's config on ``task``: this controller's, with the motor off (assist and propeller
+        level 0) where the task has no propeller; None: the defaults with the decision period [s] of the task
+        (line: assist at ``MOTOR_ASSIST_LEVEL`` where the task has a propeller, else 0; legacy:
+        ``AutopilotConfig()``, or ``AutopilotConfig.sail_only()`` where the task has no propeller)."""
+        if self.autopilot == "line":
+            if self.config is None:
+                return LineFollowingConfig(decision_period=task.decision_period,
+                                           assist_level=MOTOR_ASSIST_LEVEL if task.propeller else 0)
+            return self.config if task.propeller else dataclasses.replace(self.config, assist_level=0)
         if self.config is None:
             preset = AutopilotConfig if task.propeller else AutopilotConfig.sail_only
             return preset(decision_period=task.decision_period)
@@ -251,7 +286,7 @@ class AutopilotController:
             self.pilot.act(self._targets, self._actions)
 
     def own_counts(self) -> dict[str, np.ndarray]:
-        """The autopilot's own tack and gybe counters since each run's episode began."""
+        """The controller's own tack and gybe counters since each run's episode began."""
         return {"tacks": self.pilot.tacks.numpy().copy(), "gybes": self.pilot.gybes.numpy().copy()}
 
 
@@ -846,12 +881,13 @@ def _write_csv(path: str, columns, rows) -> None:
 
 def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int = 20, sea_state: float | None = None,
                      wind: float | None = None, seed: int = 0, device="cpu", time_limit: float | None = None,
-                     autopilot: bool | AutopilotConfig = True, progress: bool = True, *,
+                     autopilot: bool | str | LineFollowingConfig | AutopilotConfig = True, progress: bool = True, *,
                      task: TaskConfig | str | None = None,
                      record: str | os.PathLike | None = None, reef: int | None = None) -> MissionEvaluation:
     """Sail a task's runs (default the mission, EBoatMission-v0) ``runs`` times with ``policy`` (a Policy, a
-    checkpoint path, or None for none) and with the classical autopilot (``autopilot``: True for its
-    defaults, an AutopilotConfig, or False for none; without the motor on a task without propeller), all on
+    checkpoint path, or None for none) and with a classical controller (``autopilot``: True or "line" for the
+    line follower's defaults, "legacy" for the legacy autopilot's, a LineFollowingConfig or an AutopilotConfig,
+    or False for none; named "autopilot" either way; without the motor on a task without propeller), all on
     the same runs (one environment per run, the same seed for every controller).
 
     Args:
@@ -889,7 +925,10 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     if policy is not None:
         controllers.append(PolicyController(policy))
     if autopilot is not False and autopilot is not None:
-        controllers.append(AutopilotController(None if autopilot is True else autopilot))
+        if isinstance(autopilot, str):
+            controllers.append(AutopilotController(autopilot=autopilot))
+        else:
+            controllers.append(AutopilotController(None if autopilot is True else autopilot))
     if not controllers:
         raise ValueError("evaluate_mission: nothing to evaluate (no policy and autopilot=False)")
     task = DEFAULT_TASK if task is None else task
@@ -1014,7 +1053,8 @@ def main(argv=None) -> int:
     policy = None if args.no_policy else _policy_for(parser, args, name)
     try:
         evaluation = evaluate_mission(policy, args.runs, sea_state=args.sea_state, wind=args.wind, seed=args.seed,
-                                      device=device, time_limit=args.time_limit, autopilot=not args.no_autopilot,
+                                      device=device, time_limit=args.time_limit,
+                                      autopilot=False if args.no_autopilot else args.autopilot,
                                       progress=not args.no_progress, task=name, record=args.record, reef=reef)
     except ValueError as error:  # a policy whose observation the task cannot give
         fail(parser, str(error))

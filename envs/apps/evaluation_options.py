@@ -30,6 +30,9 @@ def parser() -> argparse.ArgumentParser:
                              "(default: the task's shipped policy, where it has one)")
     parser.add_argument("--no-policy", action="store_true", help="sail the autopilot only")
     parser.add_argument("--no-autopilot", action="store_true", help="sail the policy only")
+    parser.add_argument("--autopilot", choices=("line", "legacy"), default="line",
+                        help="the classical controller, named 'autopilot' in the results: line, the line follower "
+                             "of Jaulin and Le Bars (default), or legacy, the line-of-sight autopilot")
     parser.add_argument("--runs", type=int, default=20,
                         help="runs per controller: missions, or episodes of a waypoint task (default 20)")
     parser.add_argument("--sea-state", type=float, default=None, metavar="HS",

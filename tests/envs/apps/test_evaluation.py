@@ -542,7 +542,7 @@ def test_benchmark_uses_the_runner(monkeypatch):
 
     monkeypatch.setattr(autopilot_mission, "evaluate_mission", spy)
     result = autopilot_mission.run_mission(2, time_limit=5.0, task=tiny_mission())
-    assert len(calls) == 1 and calls[0]["autopilot"] is True
+    assert len(calls) == 1 and calls[0]["autopilot"] == "legacy"  # the study of the legacy autopilot
     assert set(result) == {"success", "time", "waypoints", "tacks", "status", "time_out"}
     np.testing.assert_array_equal(result["time"], [5.0, 5.0])
     np.testing.assert_array_equal(result["time_out"], [1.0, 1.0])

@@ -20,7 +20,8 @@ from gymnasium.utils.env_checker import check_env
 from ocean_warp.eboat import EBoatConfig, Hydrostatics, Profile
 from ocean_warp.envs import MissionConfig, SailingEnv, TaskConfig, make_task_config
 from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig
-from ocean_warp.envs.apps.evaluation import AutopilotController
+from ocean_warp.envs.apps.evaluation import MOTOR_ASSIST_LEVEL, AutopilotController
+from ocean_warp.envs.controllers.line_following import LineFollowingConfig
 from ocean_warp.envs.interfaces.gym_env import SailingEnvSingle
 from ocean_warp.envs.tasks.task_configs import BCDACA_ROUTE, MissionSailConfig
 from ocean_warp.ocean_config import OceanConfig
@@ -124,13 +125,22 @@ def test_gymnasium_make_and_check_env():
 
 def test_autopilot_sails_without_motor_where_there_is_no_propeller():
     sail, mission = MissionSailConfig(), MissionConfig()
-    default = AutopilotController().config_for(sail)
+    legacy = AutopilotController(autopilot="legacy")
+    default = legacy.config_for(sail)
     assert (default.assist_level, default.propeller_level) == (0, 0)
     assert default.decision_period == sail.decision_period
     assert default == AutopilotConfig.sail_only(decision_period=sail.decision_period)
     assert default.rudder_limit == pytest.approx(math.radians(18.0))  # near the physics rudder's stall (17.7 deg)
-    assert AutopilotController().config_for(mission) == AutopilotConfig(decision_period=mission.decision_period)
+    assert legacy.config_for(mission) == AutopilotConfig(decision_period=mission.decision_period)
     motoring = AutopilotConfig(propeller_level=3, assist_level=4, heading_gain=0.5)
     assert AutopilotController(motoring).config_for(mission) == motoring
     assert AutopilotController(motoring).config_for(sail) == dataclasses.replace(motoring, propeller_level=0,
                                                                                  assist_level=0)
+    # The default controller, the line follower: the motor assists only where the task has a propeller.
+    line = AutopilotController()
+    assert line.autopilot == "line"
+    assert line.config_for(sail) == LineFollowingConfig(decision_period=sail.decision_period, assist_level=0)
+    assert line.config_for(mission).assist_level == MOTOR_ASSIST_LEVEL > 0
+    assisted = LineFollowingConfig(assist_level=3, rudder_gain=2.0)
+    assert AutopilotController(assisted).config_for(mission) == assisted
+    assert AutopilotController(assisted).config_for(sail) == dataclasses.replace(assisted, assist_level=0)
