@@ -31,7 +31,7 @@ COLUMNS = ("task", "controller", "wind_m_s", "sea_state_m", "runs", "completed",
            "time_outs", "motor_use", "wall_s")
 
 
-def grid_rows(task: str, *, policy, autopilot: bool, winds, sea_states, runs: int, seed: int, device: str,
+def grid_rows(task: str, *, policy, autopilot, winds, sea_states, runs: int, seed: int, device: str,
               time_limit: float | None = None) -> list[dict]:
     """One row per controller and (sea state, wind) cell, in that order."""
     rows = []
@@ -58,6 +58,7 @@ def main(argv=None) -> int:
     parser.add_argument("--task", default="EBoatMissionSail-v0")
     parser.add_argument("--policy", default="shipped", help="checkpoint path, 'shipped' (default) or 'none'")
     parser.add_argument("--no-autopilot", action="store_true", help="the policy only")
+    parser.add_argument("--autopilot", choices=("line", "legacy"), default="line", help="which classical controller")
     parser.add_argument("--winds", type=float, nargs="+", default=[3.0, 5.0, 7.0, 10.0], help="[m/s]")
     parser.add_argument("--sea-states", type=float, nargs="+", default=[0.3, 0.5], help="Hs [m]")
     parser.add_argument("--runs", type=int, default=20)
@@ -70,7 +71,7 @@ def main(argv=None) -> int:
     wp.config.log_level = logging.WARNING
     policy = {"shipped": lambda: str(shipped_policy_path(args.task)), "none": lambda: None}.get(
         args.policy, lambda: args.policy)()
-    rows = grid_rows(args.task, policy=policy, autopilot=not args.no_autopilot, winds=args.winds,
+    rows = grid_rows(args.task, policy=policy, autopilot=False if args.no_autopilot else args.autopilot, winds=args.winds,
                      sea_states=args.sea_states, runs=args.runs, seed=args.seed, device=args.device,
                      time_limit=args.time_limit)
     if args.out:

@@ -16,8 +16,9 @@ each clipped to [-1, 1], d_lost = the leg's length + the lost margin (--lost-dis
 runs the policy (onnxruntime), clips its actions to [-1, 1] and publishes, in this order,
 ``<namespace>/control_interface/sail`` (Float32, (a1 + 1) 45 deg), ``control_interface/rudder`` (Float32,
 60 a2 deg, positive turns to port) and ``control_interface/propulsion`` (Int16, int(5 a0), truncated toward
-zero; 0 for a policy of a task without propeller). Only policies of the seed's observation set (5 values) are
-accepted. An observation that is not 9 finite numbers is ignored with a warning.
+zero; 0 for a policy of a task without propeller). Only policies of the seed's observation set are accepted:
+its 5 values, or 6 for a task with a reef rule (``EBoatMission-v0``), whose sixth is the rig's reef level as the
+crew set it (``--reef-level``: 0 the full sail, 1, 2 the deepest reef), seen as level / 2. An observation that is not 9 finite numbers is ignored with a warning.
 
 Imports: numpy, onnxruntime and rospy only (no torch, no Warp). Run this file by its path, as above: it loads
 ``onnx_policy.py`` and ``ros1.py`` from its own folder by path, not through the ``ocean_warp`` package (whose
@@ -45,6 +46,8 @@ PROG = "controller_node.py"
 """The name in its usage and messages: the file is run by its path (no ``ocean-warp`` job runs it)."""
 SEED_POLICY_OBS = 5
 """Values of the seed observation set."""
+REEF_LEVELS = 3
+"""The E-Boat's rigs: the full sail and two reefs (``EBoatConfig.reef_areas``)."""
 SEED_RAW_VALUES = 9
 """Values on mission_control/observations (``ocean_warp.ros.topics.SEED_OBSERVATION``)."""
 DEFAULT_LOST_DISTANCE = 125.0
@@ -72,9 +75,12 @@ def _sibling(name: str):
     return module
 
 
-def policy_observation(raw, lost_distance: float = DEFAULT_LOST_DISTANCE) -> np.ndarray:
+def policy_observation(raw, lost_distance: float = DEFAULT_LOST_DISTANCE, reef_level: int | None = None) -> np.ndarray:
     """The seed policy's 5 observation values (float32) from the 9 raw values of mission_control/observations
-    (see the module's docstring); ``ValueError`` unless ``raw`` is 9 finite numbers."""
+    (see the module's docstring), and a sixth, ``reef_level`` / 2, where a reef level is given (a policy of a
+    task with a reef rule); ``ValueError`` unless ``raw`` is 9 finite numbers and the level one of the rigs."""
+    if reef_level is not None and (isinstance(reef_level, bool) or reef_level not in range(REEF_LEVELS)):
+        raise ValueError(f"reef_level must be None or one of 0..{REEF_LEVELS - 1}, got {reef_level!r}")
     values = np.asarray(raw, dtype=np.float64).reshape(-1)
     if values.size != SEED_RAW_VALUES or not np.all(np.isfinite(values)):
         raise ValueError(f"an observation must be {SEED_RAW_VALUES} finite numbers, got {values.size} "
@@ -82,6 +88,8 @@ def policy_observation(raw, lost_distance: float = DEFAULT_LOST_DISTANCE) -> np.
     distance, bearing, speed, wind_speed, wind_angle = values[:5]
     scaled = [2.0 * distance / lost_distance - 1.0, bearing / 180.0, speed / 5.0 - 1.0, wind_speed / 15.0 - 1.0,
               wind_angle / 180.0]
+    if reef_level is not None:
+        scaled.append(reef_level / (REEF_LEVELS - 1))
     return np.clip(np.asarray(scaled), -1.0, 1.0).astype(np.float32)
 
 
@@ -101,6 +109,8 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--namespace", default="/eboat", help="the boat's namespace (default /eboat)")
     parser.add_argument("--lost-distance", type=float, default=DEFAULT_LOST_DISTANCE, metavar="METRES",
                         help="d_lost of the distance's scaling: the leg's length + the lost margin [m] (default 125)")
+    parser.add_argument("--reef-level", type=int, default=None, choices=range(REEF_LEVELS), metavar="LEVEL",
+                        help="the rig's reef level as set on the boat (0 full, 1, 2; needed by a policy that sees it)")
     parser.add_argument("--name", default="eboat_controller", help="the node's name (made unique with a suffix)")
     return parser
 
@@ -113,10 +123,11 @@ def _error(message: str) -> int:
 class _Controller:
     """The subscriber's callback: observation -> policy -> commands (rospy's thread)."""
 
-    def __init__(self, rospy, policy, namespace: str, lost_distance: float):
+    def __init__(self, rospy, policy, namespace: str, lost_distance: float, reef_level: int | None = None):
         from std_msgs.msg import Float32, Int16
 
         self.rospy, self.policy, self.lost_distance = rospy, policy, lost_distance
+        self.reef_level = reef_level
         self.Float32, self.Int16 = Float32, Int16
         meaning = policy.action_meaning
         self.propeller = not (meaning and "ignored" in meaning[0])
@@ -144,7 +155,7 @@ class _Controller:
 
     def __call__(self, message) -> None:
         try:
-            observation = policy_observation(message.data, self.lost_distance)
+            observation = policy_observation(message.data, self.lost_distance, self.reef_level)
         except ValueError as error:
             self.rospy.logwarn_throttle(1.0, f"{PROG}: ignored an observation: {error}")
             return
@@ -173,9 +184,13 @@ def main(argv=None) -> int:
         policy = onnx_policy.OnnxPolicy(args.policy)
     except (ImportError, FileNotFoundError, ValueError) as error:
         return _error(str(error))
-    if policy.observation != "seed" or policy.num_obs != SEED_POLICY_OBS:
+    if policy.observation != "seed" or policy.num_obs not in (SEED_POLICY_OBS, SEED_POLICY_OBS + 1):
         return _error(f"{args.policy}: the policy reads observation set {policy.observation!r} ({policy.num_obs} "
-                      f"values); the seed's topics carry the seed set's {SEED_POLICY_OBS} only")
+                      f"values); the seed's topics carry the seed set's {SEED_POLICY_OBS} only (and the reef level)")
+    sees_reef = policy.num_obs == SEED_POLICY_OBS + 1
+    if sees_reef and args.reef_level is None:
+        return _error(f"{args.policy}: the policy sees the rig's reef level; pass --reef-level (0 full, 1, 2)")
+    reef_level = args.reef_level if sees_reef else None
     try:
         rospy = ros1.import_rospy()
     except ros1.RosUnavailable as error:
@@ -191,7 +206,7 @@ def main(argv=None) -> int:
         rospy.init_node(args.name, argv=[PROG] + remaps, anonymous=True, disable_signals=True)
         from std_msgs.msg import Float32MultiArray
 
-        controller = _Controller(rospy, policy, args.namespace, args.lost_distance)
+        controller = _Controller(rospy, policy, args.namespace, args.lost_distance, reef_level)
         rospy.Subscriber(f"{args.namespace.rstrip('/')}/{OBSERVATIONS}", Float32MultiArray, controller, queue_size=1)
         rospy.loginfo(f"{PROG}: {policy.describe()}; answering {args.namespace.rstrip('/')}/{OBSERVATIONS}")
         while not stop.is_set() and not rospy.is_shutdown():

@@ -11,6 +11,7 @@ SHIPPED_POLICIES = {
     "EBoatMission-v0": "eboat_mission.pt",
     "EBoatMissionSail-v0": "eboat_mission_sail.pt",
     "EBoatWaypoint-v0": "eboat_waypoint.pt",
+    "EBoatWaypointPlus-v0": "eboat_waypoint_plus.pt",
 }
 """Task id -> file name of its shipped policy, in this package's folder."""
 

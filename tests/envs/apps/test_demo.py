@@ -191,7 +191,7 @@ def test_demo_sails_the_given_policy(tmp_path, capsys):
               "--no-usd", "--no-progress", "--device", "cpu", "--out", str(out)])
     printed = capsys.readouterr().out.splitlines()
     assert printed[:2] == ["EBoatMission-v0: 3 boats, device cpu",
-                           f"policy {policy}: for EBoatMission-v0, observation 'seed' (5 values)"], printed
+                           f"policy {policy}: for EBoatMission-v0, observation 'seed' (6 values)"], printed
     runs = _rows(out / "runs.csv")
     assert [row["controller"] for row in runs] == ["policy", "policy", "autopilot"]
     assert [float(row["motor_use"]) for row in runs[:2]] == [0.0, 0.0]

@@ -517,14 +517,14 @@ def test_mission_task_settings():
 
 
 def test_shipped_policy_path(monkeypatch):
-    """The shipped policies include these three (more may be added: the avoidance tasks' later); every
+    """The shipped policies include these three (more may be added: the sail-only avoidance task's later); every
     shipped one is a registered task's."""
     assert policies.SHIPPED_POLICIES.items() >= {"EBoatMission-v0": "eboat_mission.pt",
                                                  "EBoatWaypoint-v0": "eboat_waypoint.pt",
                                                  "EBoatMissionSail-v0": "eboat_mission_sail.pt"}.items()
     assert set(policies.SHIPPED_POLICIES) <= set(TASK_IDS)
     with pytest.raises(ValueError, match="no policy is shipped"):
-        policies.shipped_policy_path("EBoatWaypointPlus-v0")
+        policies.shipped_policy_path("EBoatAvoidSail-v0")
     monkeypatch.setitem(policies.SHIPPED_POLICIES, "EBoatMission-v0", "not_there_yet.pt")
     with pytest.raises(FileNotFoundError, match="not_there_yet.pt"):
         policies.shipped_policy_path("ocean_warp/EBoatMission-v0")
@@ -606,7 +606,7 @@ def test_cli_sail_task_ignores_the_policys_propeller(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["--task", "EBoatNowhere-v0"], "unknown task id 'EBoatNowhere-v0'; known: " + ", ".join(TASK_IDS)),
-    (["--task", "EBoatWaypointPlus-v0", "--no-autopilot"], "no policy is shipped for EBoatWaypointPlus-v0 and "
+    (["--task", "EBoatAvoidSail-v0", "--no-autopilot"], "no policy is shipped for EBoatAvoidSail-v0 and "
                                                             "--no-autopilot leaves nothing to run"),
 ])
 def test_cli_task_errors_are_one_line(argv, message, tmp_path, capsys):

@@ -157,7 +157,8 @@ def test_metadata_round_trip(task, exports):
         assert metadata["observation_normalisation"].startswith("inside")
     if task == "EBoatAvoid-v0":
         layout = read[0]["observation_layout"]
-        assert layout[5].startswith("lidar sector 0: ") and "/ 50 m" in layout[5] and "sector 23" in layout[-1]
+        assert layout[5].startswith("reef level")
+        assert layout[6].startswith("lidar sector 0: ") and "/ 50 m" in layout[6] and "sector 23" in layout[-1]
     if HAS_ONNX:
         runner = OnnxPolicy(onnx_path)
         assert (runner.task, runner.observation, runner.num_obs, runner.num_actions) == (
@@ -345,7 +346,7 @@ import importlib.util, sys
 spec = importlib.util.spec_from_file_location("onnx_policy", {onnx_policy.__file__!r})
 module = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(module)
-print(module.OnnxPolicy({str(path)!r}).act([0.0] * 5 + [1.0] * 24).shape)
+print(module.OnnxPolicy({str(path)!r}).act([0.0] * 6 + [1.0] * 24).shape)
 print(sorted(name for name in ("torch", "warp", "ocean_warp") if name in sys.modules))
 """
     through_package = "import sys, ocean_warp.ros.onnx_policy; print('torch' in sys.modules)"

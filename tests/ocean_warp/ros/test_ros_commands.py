@@ -5,6 +5,7 @@ part), the episode topic's messages. CPU, a second or two."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import socket
 import time
@@ -15,7 +16,8 @@ import torch
 import warp as wp
 
 from ocean_warp.envs import SailingEnv
-from ocean_warp.envs.tasks.task_configs import WaypointConfig
+from ocean_warp.eboat import EBoatConfig
+from ocean_warp.envs.tasks.task_configs import MissionConfig, WaypointConfig
 from ocean_warp.envs.tasks.task_kernels import apply_actions
 from ocean_warp.ros import ros1, topics
 from ocean_warp.ros.commands import (DEFAULT_SAIL_DEG, PROPULSION_TOPIC, RUDDER_TOPIC, SAIL_TOPIC, CommandInbox,
@@ -114,6 +116,20 @@ def test_the_controller_rebuilds_the_simulators_seed_observation_from_the_topic(
         env.step(torch.from_numpy(rng.uniform(-1, 1, (3, 3)).astype(np.float32)))
     with pytest.raises(ValueError, match="9 finite numbers"):
         policy_observation([0.0] * 8)
+    # The mission's policy also sees its reef level (level / 2), after the seed's five values: the same rows
+    # as the simulator's, whose level comes from the wind by the task's rule (16 runs, 4-11 m/s).
+    mission = dataclasses.replace(MissionConfig(), start=dataclasses.replace(
+        MissionConfig().start, wind_speed=(4.0, 11.0)), simulator=dataclasses.replace(
+        MissionConfig().simulator, boat=EBoatConfig(hydrostatics="points")))
+    env = SailingEnv(mission, 16, device="cpu", seed=int(rng.integers(1000)))
+    raw = topics.seed_observation_values(topics.snapshot(env)).astype(np.float32)
+    levels = env.simulator.state.reef_level.numpy()
+    assert len(set(levels.tolist())) == 3, levels  # every rig among the runs
+    rebuilt = np.stack([policy_observation(row, reef_level=int(level)) for row, level in zip(raw, levels)])
+    # (the distance's scale, the leg from each jittered start plus 25 m, is checked on the seed task above)
+    np.testing.assert_allclose(rebuilt[:, 1:], env.buffers.policy_obs.numpy()[:, 1:], atol=2e-5)
+    with pytest.raises(ValueError, match="reef_level"):
+        policy_observation(raw[0], reef_level=3)
     with pytest.raises(ValueError, match="1 not finite"):
         policy_observation([math.nan] + [0.0] * 8)
 
