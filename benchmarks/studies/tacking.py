@@ -1,6 +1,7 @@
 """Tacking under sail alone: from close-hauled on one tack, through the wind, to close-hauled on the other.
 
     python -m benchmarks.studies.tacking --polar out/polar/polar.csv --device cuda:0
+    python -m benchmarks.studies.tacking --wind-speeds 10 --reef 2 --close-hauled 50 20 --out tacking_reef.csv
 
 For each true wind speed (default 5 and 10 m/s) the boat starts close-hauled on starboard (the wind over
 its starboard bow) at the true wind angle of its best upwind VMG in the polar, with that polar point's
@@ -54,8 +55,9 @@ def close_hauled_points(polar_csv: str, wind_speeds) -> dict[float, tuple[float,
 
 
 def tack(tws: float, twa: float, sheet: float, *, boats: int, settle: float, after: float, dt: float,
-         device, seakeeping: bool = False) -> dict:
-    """Sail ``boats`` copies (sheets spread +-5 deg) through one tack in ``tws`` [m/s]; the summary row."""
+         device, seakeeping: bool = False, reef: int = 0) -> dict:
+    """Sail ``boats`` copies (sheets spread +-5 deg) through one tack in ``tws`` [m/s] with the rig at reef level
+    ``reef`` (0: the full sail); the summary row."""
     sheets = np.clip(sheet + np.radians(np.linspace(-5.0, 5.0, boats)), 0.0, math.radians(90.0))
     # The wind comes from +x (blows towards -x): yaw +twa points the bow twa to the left of the wind's source,
     # so the wind comes over the starboard bow (starboard tack); yaw -twa is the port tack.
@@ -63,7 +65,8 @@ def tack(tws: float, twa: float, sheet: float, *, boats: int, settle: float, aft
                                   wind=WindConfig(speed=tws, direction=math.pi), dt=dt)
     sim = EBoatSimulator(config, boats, device=device)
     sim.reset(position=np.column_stack([np.arange(boats) * 30.0, np.zeros(boats), np.zeros(boats)]), heading=twa,
-              velocity=[1.0, 0, 0, 0, 0, 0], wind_speed=tws, wind_direction=math.pi, sheet=sheets)
+              velocity=[1.0, 0, 0, 0, 0, 0], wind_speed=tws, wind_direction=math.pi, sheet=sheets,
+              reef_level=np.full(boats, reef))
     autopilot = HeadingAutopilot(sim)
     autopilot.set_target(np.full(boats, twa))
     settle_steps, after_steps = int(round(settle / dt)), int(round(after / dt))
@@ -84,7 +87,8 @@ def tack(tws: float, twa: float, sheet: float, *, boats: int, settle: float, aft
     first = np.where(through, new_course.argmax(axis=0), -1)
     before = speeds[settle_steps - int(10.0 / dt):settle_steps].mean(axis=0)
     late = (time >= 20.0) & (time <= 30.0)
-    rows = {"true_wind_speed_mps": tws, "true_wind_angle_deg": math.degrees(twa), "boats": boats,
+    rows = {"true_wind_speed_mps": tws, "reef_level": reef, "true_wind_angle_deg": math.degrees(twa),
+            "sheet_deg": math.degrees(sheet), "boats": boats,
             "through": int(through.sum()), "time_s": float(np.mean(time[first[through]])) if through.any() else math.nan,
             "speed_before_mps": float(before.mean()), "speed_min_mps": float(speeds[settle_steps:].min(axis=0).mean()),
             "speed_after_mps": float(speeds[settle_steps:][late].mean()) if late.any() else math.nan}
@@ -94,7 +98,10 @@ def tack(tws: float, twa: float, sheet: float, *, boats: int, settle: float, aft
 
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--polar", required=True, help="ocean-warp polar's polar.csv (the close-hauled points)")
+    parser.add_argument("--polar", default=None, help="ocean-warp polar's polar.csv (the close-hauled points)")
+    parser.add_argument("--close-hauled", type=float, nargs=2, default=None, metavar=("TWA_DEG", "SHEET_DEG"),
+                        help="the close-hauled point for every wind speed, in place of --polar's")
+    parser.add_argument("--reef", type=int, default=0, help="reef level of every boat's rig (0: the full sail)")
     parser.add_argument("--wind-speeds", type=float, nargs="+", default=[5.0, 10.0], help="[m/s]")
     parser.add_argument("--boats", type=int, default=5, help="copies per wind speed, sheets spread +-5 deg")
     parser.add_argument("--settle", type=float, default=40.0, help="close-hauled before the tack [s]")
@@ -104,9 +111,15 @@ def main(argv=None) -> None:
     parser.add_argument("--seakeeping", action="store_true", help="EBoatConfig.seakeeping (the hull's database)")
     parser.add_argument("--out", default=os.path.join(DATA, "tacking.csv"))
     args = parser.parse_args(argv)
-    points = close_hauled_points(args.polar, args.wind_speeds)
+    if (args.polar is None) == (args.close_hauled is None):
+        parser.error("give either --polar or --close-hauled")
+    if args.close_hauled is not None:
+        point = tuple(math.radians(v) for v in args.close_hauled)
+        points = {w: point for w in args.wind_speeds}
+    else:
+        points = close_hauled_points(args.polar, args.wind_speeds)
     rows = [tack(w, *points[w], boats=args.boats, settle=args.settle, after=args.after, dt=args.dt, device=args.device,
-                 seakeeping=args.seakeeping) for w in args.wind_speeds]
+                 seakeeping=args.seakeeping, reef=args.reef) for w in args.wind_speeds]
     with atomic_output(args.out) as temporary, open(temporary, "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
