@@ -210,9 +210,9 @@ def _sail_first_episodes(env, config):
     env.reset(seed=3)
     controller = AutopilotController(config)
     controller.reset(env)
-    # The sectors are the policy's observation after the seed's five values.
+    # The sectors are the policy's observation after the seed's five values and the reef level.
     assert (controller.pilot.lidar is None) == (not config.avoidance)
-    assert config.avoidance is False or controller.pilot.lidar.first == 5
+    assert config.avoidance is False or controller.pilot.lidar.first == 6
     buffers = env.buffers
     ended = np.zeros(env.num_envs, bool)
     collided = np.zeros(env.num_envs, bool)
