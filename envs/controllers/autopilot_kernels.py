@@ -35,7 +35,7 @@ from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 __all__ = ["AutopilotParameters", "AvoidanceParameters", "sail_to_targets", "reset_autopilot", "steer_clear",
            "forget_returns", "NO_RETURN_AGE",
            "course_to_target", "trim_sheet", "steer_rudder", "roll_of", "tacking_turn",
-           "RUDDER_ACTION_SCALE", "SHEET_ACTION_SCALE", "PROPELLER_ACTION_SCALE"]
+           "RUDDER_ACTION_SCALE", "SHEET_ACTION_SCALE", "PROPELLER_ACTION_SCALE", "roll_of", "side_of"]
 
 RUDDER_ACTION_SCALE = wp.constant(PI / 3.0)
 """Rudder angle of action a2 = 1 [rad] (60 deg)."""
@@ -108,7 +108,8 @@ def roll_of(q: wp.quat) -> float:
 
 
 @wp.func
-def _side_of(angle: float) -> int:
+def side_of(angle: float) -> int:
+    """+1 for an angle >= 0 (counter-clockwise, to port), else -1."""
     if angle >= 0.0:
         return 1
     return -1
@@ -136,12 +137,12 @@ def course_to_target(p: AutopilotParameters, bearing: float, distance: float, wi
     downwind = wrap_angle(bearing - wind_to)
     current = side
     if current == 0:
-        current = _side_of(upwind)
+        current = side_of(upwind)
     # Cross-track room the boat keeps: the angular margin grows as the target nears (capped below).
     room = wp.atan(p.lane_half_width / wp.max(distance, 1.0e-3))
     margin = wp.max(p.tack_hysteresis, room)
     run_half_width = PI - p.run_angle
-    result = wp.vec2(bearing, float(_side_of(upwind)))
+    result = wp.vec2(bearing, float(side_of(upwind)))
     if wp.abs(upwind) < p.no_go_angle:
         # Beat: the zone's counter-clockwise edge is the starboard tack; the boat heads close-hauled,
         # and leeway puts its track near the zone's edge.
@@ -160,7 +161,7 @@ def tacking_turn(heading: float, course: float, wind_to: float) -> bool:
     wind_from = wind_to + PI
     now = wrap_angle(heading - wind_from)
     then = wrap_angle(course - wind_from)
-    return _side_of(now) != _side_of(then) and wp.abs(now) + wp.abs(then) < PI
+    return side_of(now) != side_of(then) and wp.abs(now) + wp.abs(then) < PI
 
 
 @wp.func
@@ -231,7 +232,7 @@ def sail_to_targets(
         distance = 1.0e6
     if old_side == 0:
         # A fresh boat starts on the tack it is on.
-        old_side = _side_of(wrap_angle(heading - (wind_to + PI)))
+        old_side = side_of(wrap_angle(heading - (wind_to + PI)))
     choice = course_to_target(p, bearing, distance, wind_to, old_side)
     new_course = choice[0]
     new_side = int(choice[1])
@@ -258,7 +259,7 @@ def sail_to_targets(
         if tacking_turn(heading, new_course, wind_to):
             waiting = waiting + p.decision_period
             if waiting > p.tack_timeout:
-                forced = -_side_of(error)
+                forced = -side_of(error)
                 waiting = 0.0
         else:
             waiting = 0.0
@@ -276,7 +277,7 @@ def sail_to_targets(
     apparent_wind_angle = wrap_angle(wp.atan2(-apparent_y, -apparent_x) - heading)
     sheet = trim_sheet(p, apparent_wind_angle, roll_of(q))
     off_wind = wrap_angle(heading - (wind_to + PI))
-    if _side_of(error) == _side_of(off_wind):
+    if side_of(error) == side_of(off_wind):
         # Bearing away: ease the sheet to shed the weather helm that holds the bow up.
         sheet = wp.min(sheet + p.bear_away_ease * wp.abs(error), p.max_sheet)
 
@@ -288,7 +289,7 @@ def sail_to_targets(
     a0 = 0.0
     if level != 0:
         # Half a level beyond, so that int(5 a0) truncates to the level itself.
-        a0 = (float(level) + 0.5 * float(_side_of(float(level)))) / PROPELLER_ACTION_SCALE
+        a0 = (float(level) + 0.5 * float(side_of(float(level)))) / PROPELLER_ACTION_SCALE
     actions[boat, 0] = wp.clamp(a0, -1.0, 1.0)
     actions[boat, 1] = wp.clamp(sheet / SHEET_ACTION_SCALE - 1.0, -1.0, 1.0)
     actions[boat, 2] = wp.clamp(steer[0] / RUDDER_ACTION_SCALE, -1.0, 1.0)
@@ -435,7 +436,7 @@ def steer_clear(
     wind_to = wp.atan2(wind[1], wind[0])
     current = side[boat]
     if current == 0:
-        current = _side_of(wrap_angle(heading - (wind_to + PI)))
+        current = side_of(wrap_angle(heading - (wind_to + PI)))
     intended = course_to_target(p, bearing, distance, wind_to, current)[0]
     if not _blocked(a, returns, boat, sensor_x, sensor_y, intended):
         steering[boat] = goal

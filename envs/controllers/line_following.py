@@ -81,12 +81,11 @@ import numpy as np
 import warp as wp
 
 from ocean_warp.device_structs import struct_from
-from ocean_warp.kernels.spatial import vec6
-from ocean_warp.validation import require_in_range, require_int_in_range, require_non_negative
+from ocean_warp.validation import require_in_range, require_int_in_range
 
 from .autopilot_kernels import NO_RETURN_AGE, forget_returns, steer_clear
 from .line_following_kernels import LineFollowingParameters, follow_lines, reset_line_following
-from .sailing_autopilot import AutopilotConfig, EnvBoats, LidarSectors
+from .sailing_autopilot import AutopilotConfig, LidarSectors, env_boats
 
 __all__ = ["LineFollowingConfig", "LineFollower"]
 
@@ -262,17 +261,7 @@ class LineFollower:
         """The controller for every boat of ``env`` (a :class:`~ocean_warp.envs.protocol.BatchedEnv`), reading the
         truth from its buffers (Warp views, bound here); on a task with a ``lidar`` its sectors are read from
         the policy's observation, as :meth:`SailingAutopilot.for_env` does."""
-        b = env.buffers
-        boats = EnvBoats(position=wp.from_torch(b.position, dtype=wp.vec3),
-                         orientation=wp.from_torch(b.orientation, dtype=wp.quat),
-                         velocity=wp.from_torch(b.velocity, dtype=vec6),
-                         wind_velocity=wp.from_torch(b.wind_velocity, dtype=wp.vec3))
-        lidar = None
-        task = getattr(env, "task", None)
-        if getattr(task, "lidar", None) is not None:
-            sectors = task.lidar_observations
-            lidar = LidarSectors.from_lidar(wp.from_torch(b.policy_obs, dtype=wp.float32),
-                                            env.num_policy_obs - sectors, task.lidar, sectors)
+        boats, lidar = env_boats(env)
         return cls(boats, config, lidar)
 
     def act(self, targets: wp.array, actions: wp.array) -> None:

@@ -14,17 +14,13 @@ import warp as wp
 
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
+from .autopilot_kernels import PROPELLER_ACTION_SCALE, RUDDER_ACTION_SCALE, SHEET_ACTION_SCALE, side_of, roll_of
+
 __all__ = ["LineFollowingParameters", "signed_distance", "nominal_heading", "update_tack", "desired_heading",
-           "favoured_tack", "rudder_law", "sheet_law", "eased_sheet", "roll_angle", "follow_lines",
+           "favoured_tack", "rudder_law", "sheet_law", "eased_sheet", "follow_lines",
            "reset_line_following",
            "MODE_NOMINAL", "MODE_CLOSE_HAULED", "MODE_RUN"]
 
-RUDDER_ACTION_SCALE = wp.constant(PI / 3.0)
-"""Rudder angle of action a2 = 1 [rad] (60 deg)."""
-SHEET_ACTION_SCALE = wp.constant(PI / 4.0)
-"""Sheet angle per unit of (a1 + 1) [rad] (45 deg)."""
-PROPELLER_ACTION_SCALE = wp.constant(5.0)
-"""Propeller levels per unit of a0."""
 MODE_NOMINAL = wp.constant(0)
 """The desired heading is the nominal one, theta* (toward the line)."""
 MODE_CLOSE_HAULED = wp.constant(1)
@@ -155,19 +151,6 @@ def eased_sheet(sheet: float, roll: float, heel_limit: float, heel_ease: float) 
     return wp.max(sheet, wp.min(eased, 0.5 * PI))
 
 
-@wp.func
-def roll_angle(q: wp.quat) -> float:
-    """Roll [rad] of a body -> world quaternion (Z-Y-X angles; positive: starboard side down)."""
-    return wp.atan2(2.0 * (q[3] * q[0] + q[1] * q[2]), 1.0 - 2.0 * (q[0] * q[0] + q[1] * q[1]))
-
-
-@wp.func
-def _side(x: float) -> int:
-    if x >= 0.0:
-        return 1
-    return -1
-
-
 @wp.kernel(enable_backward=False)
 def follow_lines(
     p: LineFollowingParameters,
@@ -246,7 +229,7 @@ def follow_lines(
     q = tack[boat]
     if q == 0:
         # A fresh boat starts on the tack it is on.
-        q = -_side(wrap_angle(theta - (psi + PI)))
+        q = -side_of(wrap_angle(theta - (psi + PI)))
     if new_line:
         # A new line starts on the tack that makes more way along it (the paper keeps the last leg's q, which
         # on a line at about zeta off the wind can sail the boat away from b until it leaves the corridor).
@@ -277,11 +260,11 @@ def follow_lines(
     if forced == 0:
         from_wind = wrap_angle(theta - (psi + PI))
         to_wind = wrap_angle(theta_bar - (psi + PI))
-        through_wind = _side(from_wind) != _side(to_wind) and wp.abs(from_wind) + wp.abs(to_wind) < PI
+        through_wind = side_of(from_wind) != side_of(to_wind) and wp.abs(from_wind) + wp.abs(to_wind) < PI
         if through_wind:
             waiting = waiting + p.decision_period
             if waiting > p.tack_timeout:
-                forced = -_side(error)
+                forced = -side_of(error)
                 waiting = 0.0
         else:
             waiting = 0.0
@@ -304,7 +287,7 @@ def follow_lines(
     trim_heading = theta
     if wp.cos(psi - theta) + wp.cos(p.close_hauled_angle) < 0.0:
         trim_heading = theta_bar
-    sheet = eased_sheet(sheet_law(p.beam_reach_sheet, psi, trim_heading), roll_angle(rot), p.heel_limit,
+    sheet = eased_sheet(sheet_law(p.beam_reach_sheet, psi, trim_heading), roll_of(rot), p.heel_limit,
                         p.heel_ease)
     sheet = wp.clamp(sheet, p.min_sheet, p.max_sheet)
 

@@ -47,7 +47,7 @@ from ocean_warp.kernels.spatial import vec6
 from .autopilot_kernels import (AutopilotParameters, AvoidanceParameters, NO_RETURN_AGE, forget_returns,
                                 reset_autopilot, sail_to_targets, steer_clear)
 
-__all__ = ["AutopilotConfig", "LidarSectors", "SailingAutopilot"]
+__all__ = ["AutopilotConfig", "LidarSectors", "SailingAutopilot", "env_boats"]
 
 _OWNER = "AutopilotConfig"
 
@@ -311,6 +311,24 @@ class EnvBoats:
     wind_velocity: wp.array
 
 
+def env_boats(env) -> tuple[EnvBoats, LidarSectors | None]:
+    """Warp views of the boats' truth in ``env``'s buffers (a :class:`~ocean_warp.envs.protocol.BatchedEnv`), bound
+    here, and on a task with a ``lidar`` its sectors, read from the policy's observation (its last
+    ``task.lidar_observations`` values); None without one."""
+    b = env.buffers
+    boats = EnvBoats(position=wp.from_torch(b.position, dtype=wp.vec3),
+                     orientation=wp.from_torch(b.orientation, dtype=wp.quat),
+                     velocity=wp.from_torch(b.velocity, dtype=vec6),
+                     wind_velocity=wp.from_torch(b.wind_velocity, dtype=wp.vec3))
+    lidar = None
+    task = getattr(env, "task", None)
+    if getattr(task, "lidar", None) is not None:
+        sectors = task.lidar_observations
+        lidar = LidarSectors.from_lidar(wp.from_torch(b.policy_obs, dtype=wp.float32),
+                                        env.num_policy_obs - sectors, task.lidar, sectors)
+    return boats, lidar
+
+
 class SailingAutopilot:
     """The autopilot for a batch of boats whose truth ``boats`` holds: an
     :class:`~ocean_warp.eboat.EBoatState` (``simulator.state``) or any object with the Warp arrays
@@ -394,17 +412,7 @@ class SailingAutopilot:
         the truth from its buffers (Warp views of them, bound here). On a task with a ``lidar``, the lidar's
         sectors are read from the policy's observation (its last ``task.lidar_sectors`` values), so the
         autopilot steers clear of obstacles as ``config.avoidance`` says."""
-        b = env.buffers
-        boats = EnvBoats(position=wp.from_torch(b.position, dtype=wp.vec3),
-                         orientation=wp.from_torch(b.orientation, dtype=wp.quat),
-                         velocity=wp.from_torch(b.velocity, dtype=vec6),
-                         wind_velocity=wp.from_torch(b.wind_velocity, dtype=wp.vec3))
-        lidar = None
-        task = getattr(env, "task", None)
-        if getattr(task, "lidar", None) is not None:
-            sectors = task.lidar_observations
-            lidar = LidarSectors.from_lidar(wp.from_torch(b.policy_obs, dtype=wp.float32),
-                                            env.num_policy_obs - sectors, task.lidar, sectors)
+        boats, lidar = env_boats(env)
         return cls(boats, config, lidar)
 
     def act(self, targets: wp.array, actions: wp.array) -> None:
