@@ -87,6 +87,9 @@ class EnvBuffers:
     """(N,) int32: the simulator's ``BoatStatus`` bits when it ended (0: healthy)."""
     final_waypoints: Any
     """(N,) int32: waypoints it reached."""
+    final_score: Any
+    """(N,) float32: its score by the rules of the competition the task comes from (VRX's, lower is better for
+    station keeping and wayfinding, higher for following the path); NaN where the task has no such score."""
     # --- the obstacles (a task with ``obstacles``; K = 0 without) ---
     obstacles: Any
     """(N, K, 4) float32: each environment's obstacles now: x, y from its origin [m], radius [m] and kind

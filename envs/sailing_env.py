@@ -131,6 +131,8 @@ class SailingEnv:
         self.final_success = zeros(n)
         self.final_status = zeros(n, int)
         self.final_waypoints = zeros(n, int)
+        self.final_score = wp.full(n, float("nan"), dtype=float, device=device)
+        """(N,) the competition score of each environment's last ended episode (NaN: the task has none)."""
         self.propeller_level = zeros(n, self.simulator.control.propeller.dtype)
         """(N,) the propeller level the last decision applied (copied before a reset stops the motor)."""
         self.final_position = zeros(n, wp.vec3)
@@ -168,6 +170,7 @@ class SailingEnv:
             final_orientation=view(self.final_orientation), final_return=view(self.final_return),
             final_length=view(self.final_length), final_success=view(self.final_success),
             final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
+            final_score=view(self.final_score),
             obstacles=self._obstacle_view())
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`)."""
         self._hooks = HookChain([])

@@ -84,6 +84,7 @@ def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.d
             "wind_direction": ((), f32), "propeller_level": ((), i32), "final_position": ((3,), f32),
             "final_orientation": ((4,), f32), "final_return": ((), f32), "final_length": ((), i32),
             "final_success": ((), f32), "final_status": ((), i32), "final_waypoints": ((), i32),
+            "final_score": ((), f32),
             "obstacles": ((task.obstacle_slots, 4), f32)}
 
 
