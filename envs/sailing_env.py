@@ -32,7 +32,6 @@ from .tasks.task_kernels import (
     PRIVILEGED_OBS,
     StartDistribution,
     TaskParameters,
-    apply_task_actions,
     draw_starts,
     evaluate,
     observe,
@@ -139,6 +138,8 @@ class SailingEnv:
         """(N,) the boats' positions after the last decision's physics, before any reset [m]."""
         self.final_orientation = zeros(n, wp.quat)
         self._everyone = wp.ones(n, dtype=wp.int32, device=device)
+        self._enabled_actions = wp.array([1 if task.propeller else 0, 1, 1], dtype=wp.int32, device=device)
+        """The vessel's action columns the task uses: the propeller's is off under sail alone."""
         self.clearance = wp.full(n, task.reward.proximity_range, dtype=float, device=device)
         """(N,) each boat's gap to the nearest obstacle after the last decision [m] (the reward's proximity
         range on open water)."""
@@ -239,9 +240,7 @@ class SailingEnv:
 
     def launch_actions(self) -> None:
         """The environment layer before the physics: actions to actuator commands (launch only)."""
-        sim = self.simulator
-        wp.launch(apply_task_actions, dim=self.num_envs, device=self.device, inputs=[self.parameters, self.actions],
-                  outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
+        self.simulator.launch_actions(self.actions, self._enabled_actions)
 
     def launch_task(self) -> None:
         """The environment layer after the physics: rewards and episode ends, the final observations, new

@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import warp as wp
 
+from ocean_warp.kernels.eboat_actions import MAX_LEVEL, RUDDER_LIMIT, SHEET_HALF, commanded_level
 from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
 
 __all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "BoatView", "StartRows", "POLICY_OBS",
-           "PRIVILEGED_OBS", "policy_observation_count", "apply_actions", "apply_task_actions", "evaluate", "observe",
+           "PRIVILEGED_OBS", "policy_observation_count", "evaluate", "observe",
            "draw_starts", "reef_level_for"]
 
 EPISODE_START = wp.constant(0x3C6E_F372)
@@ -32,9 +33,6 @@ PRIVILEGED_OBS = 12
 POLICY_OBS = {"seed": 5, "plus": 15}
 """Values of each observation set; a task appends its reef level and its lidar's sectors
 (:func:`policy_observation_count`)."""
-MAX_LEVEL = wp.constant(5)
-RUDDER_LIMIT = wp.constant(60.0 / (180.0 / 3.141592653589793))
-SHEET_HALF = wp.constant(45.0 / (180.0 / 3.141592653589793))
 
 
 @wp.struct
@@ -225,12 +223,6 @@ def reef_level_for(start: StartDistribution, wind_speed: float) -> int:
 
 
 @wp.func
-def propeller_level(action: float) -> int:
-    """int(5 a), truncated toward zero, of a clipped action."""
-    return int(float(MAX_LEVEL) * wp.clamp(action, -1.0, 1.0))
-
-
-@wp.func
 def from_uniform(u: float, low: float, high: float, step: float) -> float:
     """A uniform number ``u`` in [0, 1) mapped onto [low, high], or onto the grid low + k step below high
     (inclusive of high when the grid does not close a circle) when ``step`` > 0.
@@ -245,65 +237,6 @@ def from_uniform(u: float, low: float, high: float, step: float) -> float:
         cells = cells + 1
     cells = wp.max(cells, 1)
     return low + step * float(wp.min(int(u * float(cells)), cells - 1))
-
-
-@wp.func
-def commanded_level(use_propeller: bool, action: float) -> int:
-    """The propeller level commanded for a0 = ``action``: ``propeller_level(action)``, or 0 without the
-    propeller (a task's ``sail_only``)."""
-    if use_propeller:
-        return propeller_level(action)
-    return 0
-
-
-@wp.func
-def write_commands(
-    env: int,
-    use_propeller: bool,
-    actions: wp.array2d(dtype=float),
-    rudder: wp.array(dtype=float),
-    sheet: wp.array(dtype=float),
-    propeller: wp.array(dtype=int),
-):
-    """Environment ``env``'s actions in [-1, 1] (clipped) to commands: propeller int(5 a0) (0 unless
-    ``use_propeller``), sheet (a1 + 1) 45 deg [rad], rudder 60 deg a2 [rad]. A non-finite action (a0 too,
-    even when ignored) becomes a NaN rudder command, which the simulator flags as bad input."""
-    a0 = actions[env, 0]
-    a1 = actions[env, 1]
-    a2 = actions[env, 2]
-    if not (wp.isfinite(a0) and wp.isfinite(a1) and wp.isfinite(a2)):
-        rudder[env] = wp.nan
-        propeller[env] = 0
-        return
-    propeller[env] = commanded_level(use_propeller, a0)
-    sheet[env] = (wp.clamp(a1, -1.0, 1.0) + 1.0) * SHEET_HALF
-    rudder[env] = RUDDER_LIMIT * wp.clamp(a2, -1.0, 1.0)
-
-
-@wp.kernel(enable_backward=False)
-def apply_actions(
-    actions: wp.array2d(dtype=float),
-    rudder: wp.array(dtype=float),
-    sheet: wp.array(dtype=float),
-    propeller: wp.array(dtype=int),
-):
-    """Actions (N, 3) in [-1, 1] (clipped) to commands, the propeller always in use: propeller int(5 a0),
-    sheet (a1 + 1) 45 deg, rudder 60 deg a2 (see ``write_commands``). A task's step launches
-    ``apply_task_actions``, which knows whether the task has a propeller."""
-    write_commands(wp.tid(), True, actions, rudder, sheet, propeller)
-
-
-@wp.kernel(enable_backward=False)
-def apply_task_actions(
-    task: TaskParameters,
-    actions: wp.array2d(dtype=float),
-    rudder: wp.array(dtype=float),
-    sheet: wp.array(dtype=float),
-    propeller: wp.array(dtype=int),
-):
-    """A task's actions (N, 3) to commands, as ``apply_actions``, except that on a task without propeller
-    (``task.sail_only``) a0 is ignored and the level commanded is 0."""
-    write_commands(wp.tid(), task.sail_only == 0, actions, rudder, sheet, propeller)
 
 
 @wp.func

@@ -12,6 +12,7 @@ from ocean_warp.current import Current
 from ocean_warp.fleet import Fleet
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.kernels.appendage_buoyancy import appendage_buoyancy
+from ocean_warp.kernels.eboat_actions import apply_eboat_actions
 from ocean_warp.kernels.point_buoyancy import point_buoyancy
 from ocean_warp.device_structs import struct_from
 from ocean_warp.kernels.sailing_rig import RigControl, RigState, RigSurroundings, reset_rig, sailing_rig
@@ -199,6 +200,7 @@ class EBoatSimulator:
         self.tensors = EBoatTensors(self.state.map(wp.to_torch), self.control.map(wp.to_torch),
                                     self.start.map(wp.to_torch))
         """torch views of ``state``, ``control`` and ``start``, bound once."""
+        self._all_actions = wp.ones(3, dtype=wp.int32, device=device)
         self.reset()
 
     @property
@@ -289,6 +291,14 @@ class EBoatSimulator:
         self.current.reset_masked(mask, start.current_speed, start.current_direction)
         self.rig.reset_masked(mask, start.sheet, start.foil_scale, start.reef_level)
         self.sensors.reset_masked(mask, self.fleet, start.noise_scale)
+
+    def launch_actions(self, actions: wp.array, enabled: wp.array | None = None) -> None:
+        """The vessel's actions (N, 3) in [-1, 1] to the rig's commands (``ocean_warp.kernels.eboat_actions``:
+        propeller int(5 a0), sheet (a1 + 1) 45 deg, rudder 60 deg a2); ``enabled`` (3,) int32 on the device:
+        a zero switches its column off (the propeller of a task under sail alone); None: all on. Launches only."""
+        wp.launch(apply_eboat_actions, dim=self.count, device=self.device,
+                  inputs=[actions, self._all_actions if enabled is None else enabled],
+                  outputs=[self.control.rudder, self.control.sheet, self.control.propeller])
 
     def rewind(self) -> None:
         """Set the simulated time (and so the waves) and the wind's and sensors' random streams back to

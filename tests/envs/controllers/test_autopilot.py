@@ -13,7 +13,7 @@ import warp as wp
 from benchmarks.studies.autopilot_mission import run_mission
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics, Profile
 from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig, SailingAutopilot
-from ocean_warp.envs.tasks.task_kernels import apply_actions
+from ocean_warp.kernels.eboat_actions import apply_eboat_actions
 from ocean_warp.envs.tasks.task_configs import MissionConfig, mission_simulator
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 from ocean_warp.wind import WindConfig
@@ -143,7 +143,8 @@ def test_reset_mask_and_propeller(device):
     np.testing.assert_array_equal(pilot.side.numpy(), [1, -1, -1])
     commands = [wp.zeros(3, dtype=float, device=device), wp.zeros(3, dtype=float, device=device),
                 wp.zeros(3, dtype=wp.int32, device=device)]
-    wp.launch(apply_actions, dim=3, device=device, inputs=[wp.array(actions, dtype=float, device=device)],
+    wp.launch(apply_eboat_actions, dim=3, device=device,
+              inputs=[wp.array(actions, dtype=float, device=device), wp.ones(3, dtype=wp.int32, device=device)],
               outputs=commands)
     np.testing.assert_array_equal(commands[2].numpy(), [-3, -3, -3])
     np.testing.assert_allclose(commands[0].numpy(), actions[:, 2] * 60.0 * DEG, rtol=1e-6)
@@ -187,8 +188,7 @@ def sail(device, starts, headings, targets, seconds, *, wind=10.0, config=None, 
     log = {"heading": [], "course": [], "position": [], "status": []}
     for _ in range(int(seconds / config.decision_period)):
         pilot.act(target_array, actions)
-        wp.launch(apply_actions, dim=n, device=device, inputs=[actions],
-                  outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
+        sim.launch_actions(actions)
         for _ in range(steps):
             sim.step()
         log["heading"].append(roll_pitch_yaw(sim.state.orientation.numpy())[:, 2])

@@ -20,7 +20,6 @@ from ocean_warp.envs.controllers.line_following_kernels import (LineFollowingPar
                                                                 eased_sheet, nominal_heading, rudder_law,
                                                                 sheet_law, signed_distance, update_tack)
 from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig
-from ocean_warp.envs.tasks.task_kernels import apply_actions
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw, roll_pitch_yaw
 from ocean_warp.wind import WindConfig
 
@@ -319,8 +318,7 @@ def sail(device, heading, target, seconds, *, wind=6.0, config=None, stop_within
         log["rudder"].append(float(actions.numpy()[0, 2]))
         log["e"].append(float(follower.cross_track.numpy()[0]))
         log["course"].append(float(follower.course.numpy()[0]))
-        wp.launch(apply_actions, dim=1, device=device, inputs=[actions],
-                  outputs=[sim.control.rudder, sim.control.sheet, sim.control.propeller])
+        sim.launch_actions(actions)
         for _ in range(steps):
             sim.step()
         log["position"].append(sim.state.position.numpy()[0, :2].copy())

@@ -18,7 +18,7 @@ import warp as wp
 from ocean_warp.envs import SailingEnv
 from ocean_warp.eboat import EBoatConfig
 from ocean_warp.envs.tasks.task_configs import MissionConfig, WaypointConfig
-from ocean_warp.envs.tasks.task_kernels import apply_actions
+from ocean_warp.kernels.eboat_actions import apply_eboat_actions
 from ocean_warp.ros import ros1, topics
 from ocean_warp.ros.commands import (DEFAULT_SAIL_DEG, PROPULSION_TOPIC, RUDDER_TOPIC, SAIL_TOPIC, CommandInbox,
                                      actions_from_commands)
@@ -30,7 +30,8 @@ def _task_commands(actions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndar
     n = actions.shape[0]
     rudder, sheet = (wp.zeros(n, dtype=float, device="cpu") for _ in range(2))
     level = wp.zeros(n, dtype=int, device="cpu")
-    wp.launch(apply_actions, dim=n, device="cpu", inputs=[wp.array(actions, dtype=float, device="cpu")],
+    wp.launch(apply_eboat_actions, dim=n, device="cpu",
+              inputs=[wp.array(actions, dtype=float, device="cpu"), wp.ones(3, dtype=wp.int32, device="cpu")],
               outputs=[rudder, sheet, level])
     return np.degrees(sheet.numpy()), np.degrees(rudder.numpy()), level.numpy()
 

@@ -1,0 +1,58 @@
+"""The E-Boat as a vessel (``ocean_warp.vessel``): its actions, its parts as a viewer sees them, its capsule."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..contact import boat_capsule
+from ..meshes import concatenate
+from ..vessel import ActionSpec, CollisionShape, VesselPart
+from .eboat_simulator import EBoatSimulator
+from .parts import BODY, BOOM, REEF, RUDDER, eboat_parts
+from .simulator_config import EBoatSimulatorConfig
+
+__all__ = ["EBoatVessel", "EBOAT_ACTIONS"]
+
+EBOAT_ACTIONS = (
+    ActionSpec("propeller", "electric propeller level int(5 a), -5 .. 5 (astern .. ahead)"),
+    ActionSpec("sheet", "sheet length as the boom's largest angle (a + 1) 45 deg, 0 .. 90 deg"),
+    ActionSpec("rudder", "rudder angle 60 deg a, -60 .. 60 deg, + turns the boat to port"),
+)
+"""The E-Boat's three actions in [-1, 1], in column order (``ocean_warp.kernels.eboat_actions``)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class EBoatVessel:
+    """The E-Boat of ``config`` as a :class:`~ocean_warp.vessel.Vessel`: ``simulator(count)`` builds an
+    :class:`~ocean_warp.eboat.EBoatSimulator`."""
+
+    config: EBoatSimulatorConfig = dataclasses.field(default_factory=EBoatSimulatorConfig)
+    name: str = "E-Boat"
+    actions: tuple[ActionSpec, ...] = EBOAT_ACTIONS
+
+    def __post_init__(self):
+        if not isinstance(self.config, EBoatSimulatorConfig):
+            raise ValueError(f"EBoatVessel.config must be an EBoatSimulatorConfig, got {self.config!r}")
+
+    def simulator(self, count: int, *, device=None, first_boat: int = 0, ocean=None) -> EBoatSimulator:
+        return EBoatSimulator(self.config, count, device=device, ocean=ocean, first_boat=first_boat)
+
+    def parts(self, hull_detail: int = 2) -> tuple[VesselPart, ...]:
+        """Body (hull, keel, mast), the boom's spar and sail on ``boom_angle``, the rudder on ``rudder_angle``."""
+        meshes = eboat_parts(self.config.boat, hull_detail=hull_detail)
+        boom_pivot = tuple(float(v) for v in meshes.boom_pivot)
+        return (
+            VesselPart(BODY, concatenate(meshes.hull, meshes.keel, meshes.mast)),
+            VesselPart(BOOM, meshes.spar, joint="boom_angle", pivot=boom_pivot, material="metal"),
+            VesselPart(REEF, meshes.sail, joint="boom_angle", pivot=boom_pivot, material="sail"),
+            VesselPart(RUDDER, meshes.blade, joint="rudder_angle",
+                       pivot=tuple(float(v) for v in meshes.rudder_pivot), material="foil"),
+        )
+
+    def collision_shape(self) -> CollisionShape:
+        """The capsule of the physics hull (half beam radius, spanning its length)."""
+        hull = eboat_parts(self.config.boat, hull_detail=1).hull.points
+        stern, bow, radius = boat_capsule(np.asarray(hull))
+        return CollisionShape(tuple(map(float, stern)), tuple(map(float, bow)), float(radius))
