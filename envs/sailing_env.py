@@ -19,7 +19,6 @@ import warp as wp
 
 from ocean_warp.device_structs import struct_from
 from ocean_warp.eboat import EBoatSimulator, Hydrostatics
-from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
@@ -37,8 +36,9 @@ from .tasks.task_kernels import (
     observe,
     policy_observation_count,
 )
-from .decision_hook import DecisionHook, HookChain
-from .protocol import EnvBuffers, episode_log
+from .decision_hook import DecisionHook
+from .protocol import EnvBuffers
+from .vessel_env import BatchedVesselEnv
 from .tasks.task_configs import ObservationSet, TaskConfig
 
 __all__ = ["SailingEnv", "DecisionHook", "environment_origins"]
@@ -55,7 +55,7 @@ def environment_origins(count: int, tile_size: float, spread: bool) -> np.ndarra
     return np.column_stack([xy, np.zeros(count)]).astype(np.float32)
 
 
-class SailingEnv:
+class SailingEnv(BatchedVesselEnv):
     """``num_envs`` E-Boats sailing one task (a :class:`~ocean_warp.envs.tasks.TaskConfig`), batched.
 
     Example::
@@ -174,10 +174,7 @@ class SailingEnv:
             final_score=view(self.final_score),
             obstacles=self._obstacle_view())
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`)."""
-        self._hooks = HookChain([])
-        """The hooks :meth:`attach` added to every step."""
-        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
-                                                   capture=self.task.simulator.capture_graph)
+        self._start_replay()
         self.reset()
 
     def _obstacle_view(self) -> torch.Tensor:
@@ -185,62 +182,12 @@ class SailingEnv:
             return torch.zeros((self.num_envs, 0, 4), device=self.torch_device)
         return wp.to_torch(self.obstacles.table)
 
-    # --- the decision step ------------------------------------------------------------------------
-    def step(self, actions: torch.Tensor | None = None) -> None:
-        """One decision: ``actions`` (N, 3) in [-1, 1] (None: the ones already in ``buffers.actions``),
-        ``decision_period`` of simulated time, rewards and episode ends, and the same-step reset of the
-        environments that ended. Results are in ``buffers``; asynchronous on CUDA, ordered with torch."""
-        if actions is not None:
-            if tuple(actions.shape) != (self.num_envs, self.num_actions):
-                raise ValueError(f"SailingEnv.step: actions must have shape ({self.num_envs}, {self.num_actions}), "
-                                 f"got {tuple(actions.shape)}")
-            self.buffers.actions.copy_(actions)
-        with ordered_with_torch(self.device):
-            self._replayed_decision()
-
-    def _launch_decision(self) -> None:
-        self.launch_decision()
-
-    def add_force_model(self, model) -> None:
-        """Add a force model to the simulator (``Simulator.add_model``: e.g. ``ocean_warp.contact.Contact``); the
-        decision's graph is captured anew at the next step."""
-        self.simulator.simulator.add_model(model)
-        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
-                                                   capture=self.task.simulator.capture_graph)
-
-    def attach(self, hook: DecisionHook) -> None:
-        """Run ``hook``'s launches inside every :meth:`step` from now on (a sensor that scans during the
-        decision, a recorder); hooks run in the order attached. The decision's graph is captured anew at the
-        next step."""
-        if not isinstance(hook, DecisionHook):
-            raise ValueError(f"SailingEnv.attach: hook must be a DecisionHook, got {hook!r}")
-        self._hooks.hooks.append(hook)
-        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
-                                                   capture=self.task.simulator.capture_graph)
-
-    def launch_decision(self, hook: DecisionHook | None = None) -> None:
-        """The launches of one decision (what :meth:`step` replays): actions to commands, the physics steps
-        and the task's kernels, with the attached hooks' launches (:meth:`attach`) and then ``hook``'s at
-        their three points (launch only; graph-safe when the hooks' are)."""
-        hook = self._hooks if hook is None else HookChain(self._hooks.hooks + [hook])
-        state = self.simulator.state
-        self.launch_actions()
-        wp.copy(self.propeller_level, self.simulator.control.propeller)
-        if hook is not None:
-            hook.after_actions(self)
-        for step in range(self.steps_per_decision):
-            self.simulator.launch_step()
-            if hook is not None:
-                hook.after_physics_step(self, step)
-        wp.copy(self.final_position, state.position)
-        wp.copy(self.final_orientation, state.orientation)
-        if hook is not None:
-            hook.after_physics(self)
-        self.launch_task()
-
+    # --- the decision step (``BatchedVesselEnv.step`` replays it) --------------------------------------
     def launch_actions(self) -> None:
-        """The environment layer before the physics: actions to actuator commands (launch only)."""
+        """The environment layer before the physics: actions to actuator commands, and the propeller level
+        they apply (launch only)."""
         self.simulator.launch_actions(self.actions, self._enabled_actions)
+        wp.copy(self.propeller_level, self.simulator.control.propeller)
 
     def launch_task(self) -> None:
         """The environment layer after the physics: rewards and episode ends, the final observations, new
@@ -298,21 +245,6 @@ class SailingEnv:
             wp.copy(self.final_orientation, self.simulator.state.orientation)
             wp.copy(self.propeller_level, self.simulator.control.propeller)
 
-    def episode_log(self) -> dict[str, torch.Tensor]:
-        """Statistics of the episodes that ended in the last step, see :func:`~ocean_warp.envs.protocol.episode_log`."""
-        return episode_log(self.buffers)
-
-    @property
-    def significant_wave_height(self) -> float:
-        """The sea's significant wave height as the wave grid holds it [m] (``Ocean.significant_wave_height``)."""
-        return self.simulator.ocean.significant_wave_height
-
-    def set_significant_wave_height(self, hs: float) -> float:
-        """Rescale the sea to significant wave height ``hs`` [m] (``Ocean.set_significant_wave_height``: the
-        same spectrum shape, directions and phases); returns the height the grid holds."""
-        self.simulator.ocean.set_significant_wave_height(hs)
-        return self.significant_wave_height
-
     def set_start(self, start) -> None:
         """Draw the episodes that start from now on from ``start`` (a ``StartConfig``: a training curriculum's
         wind and leg ranges); the decision's graph is captured anew at the next step. Episodes under way are
@@ -320,11 +252,7 @@ class SailingEnv:
         self.task = dataclasses.replace(self.task, start=start)
         self.start_distribution = _start_distribution(self.task, self.start_distribution.start_height,
                                                       self.device)
-        self._replayed_decision = ReplayedLaunches(self._launch_decision, self.device,
-                                                   capture=self.task.simulator.capture_graph)
-
-    def close(self) -> None:
-        """Nothing to release (the protocol's ``close``: Warp frees the arrays with the env)."""
+        self._recapture()
 
     def _start_height(self) -> float:
         if self.task.start_height is not None:

@@ -112,6 +112,9 @@ class Vessel(Protocol):
 
     name: str
     actions: tuple[ActionSpec, ...]
+    config: Any
+    """The simulator config its boats are built from (its sea, wind, current, sensors and time step: ``ocean``,
+    ``wind``, ``dt``, ``capture_graph`` at least)."""
 
     def simulator(self, count: int, *, device=None, first_boat: int = 0, ocean=None) -> VesselSimulator:
         """``count`` boats of this vessel (boats [first_boat, first_boat + count) of a larger batch)."""

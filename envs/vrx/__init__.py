@@ -1,0 +1,6 @@
+"""VRX's tasks (station keeping, wayfinding, following a path) as batched RL tasks on any vessel."""
+
+from .task_config import VrxRewardConfig, VrxStartConfig, VrxTask, VrxTaskConfig
+from .vrx_env import VrxEnv
+
+__all__ = ["VrxTask", "VrxTaskConfig", "VrxRewardConfig", "VrxStartConfig", "VrxEnv"]

@@ -1,0 +1,184 @@
+"""The configs of VRX's tasks as RL tasks: which task, the vessel that sails it, the randomisation of each
+episode and the reward.
+
+VRX (the RobotX competition's simulator, ``osrf/vrx``) scores a WAM-V on station keeping (hold a goal pose),
+wayfinding (visit a list of goal poses) and following a path (gates between buoys, in order). Here each is a
+batched task on any :class:`~ocean_warp.vessel.Vessel` with thrusters or a propeller and rudder; the WAM-V is
+the default. A goal is a pose: x, y from the environment's origin [m] and a heading [rad].
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+from typing import Any
+
+from ocean_warp.validation import require_int_in_range, require_positive
+from ocean_warp.vessel import require_actions, require_vessel
+
+__all__ = ["VrxTask", "VrxRewardConfig", "VrxStartConfig", "VrxTaskConfig"]
+
+
+class VrxTask(str, enum.Enum):
+    """VRX's task (``VrxTaskConfig.kind``)."""
+
+    STATION_KEEPING = "station_keeping"
+    """Reach and hold one goal pose for the whole episode; VRX scores the mean pose error over the run."""
+    WAYFINDING = "wayfinding"
+    """Visit goal poses in turn; VRX scores the mean over the goals of each one's smallest pose error."""
+    FOLLOW_PATH = "follow_path"
+    """Pass gates (two buoys each) in order, among obstacles; VRX counts the gates and the collisions."""
+
+
+def _range(owner: str, name: str, value, low: float, high: float, unit: str = "") -> tuple[float, float]:
+    try:
+        a, b = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{owner}.{name} must be a (low, high) pair{unit}, got {value!r}") from None
+    if not (math.isfinite(a) and math.isfinite(b) and low <= a <= b <= high):
+        raise ValueError(f"{owner}.{name} must satisfy {low} <= low <= high <= {high}{unit}, got {value!r}")
+    return (a, b)
+
+
+@dataclasses.dataclass(frozen=True)
+class VrxRewardConfig:
+    """The reward of a decision: progress in pose error, a cost of the error and of the thrust, a bonus per goal
+    reached and a penalty for a flagged boat. The pose error is VRX's: d + 0.75^d |heading error| [m, rad]."""
+
+    progress_scale: float = 1.0
+    """Reward per metre of pose error removed in the decision."""
+    error_cost: float = 0.05
+    """Cost per metre of pose error per second."""
+    action_cost: float = 0.01
+    """Cost per decision of the mean squared action (thrust spent)."""
+    reach_bonus: float = 2.0
+    """Reward when a goal of wayfinding or a gate of the path is reached."""
+    flagged_penalty: float = 10.0
+    """Penalty when the simulator flags the boat (capsized, sunk, non-finite, collided)."""
+
+    def __post_init__(self):
+        for field in dataclasses.fields(self):
+            value = float(getattr(self, field.name))
+            if not (math.isfinite(value) and value >= 0.0):
+                raise ValueError(f"VrxRewardConfig.{field.name} must be finite and >= 0, got {value!r}")
+            object.__setattr__(self, field.name, value)
+
+
+@dataclasses.dataclass(frozen=True)
+class VrxStartConfig:
+    """How each episode starts (drawn per environment from its own random stream)."""
+
+    goal_distance: tuple[float, float] = (5.0, 15.0)
+    """Distance from the start to the first goal [m]."""
+    goal_spacing: tuple[float, float] = (10.0, 20.0)
+    """Distance between consecutive goals (wayfinding) or gates (the path) [m]."""
+    wind_speed: tuple[float, float] = (0.0, 5.0)
+    """Mean true wind speed [m/s]."""
+    wind_direction_deg: tuple[float, float] = (-180.0, 180.0)
+    """Mean wind direction, where it blows towards, from +x [deg]."""
+    gust_scale: tuple[float, float] = (1.0, 1.0)
+    """Factor on the configured gusts."""
+    current_speed: tuple[float, float] = (0.0, 0.0)
+    """Steady current [m/s]."""
+    current_direction_deg: tuple[float, float] = (-180.0, 180.0)
+    """Where the current flows towards, from +x [deg]."""
+    sensor_noise_scale: tuple[float, float] = (1.0, 1.0)
+    """Factor on the sensors' noise."""
+    start_speed: tuple[float, float] = (0.0, 0.0)
+    """Surge speed at the start [m/s]."""
+
+    def __post_init__(self):
+        owner = "VrxStartConfig"
+        for name, low, high, unit in (("goal_distance", 0.0, 1e4, " [m]"), ("goal_spacing", 0.0, 1e4, " [m]"),
+                                      ("wind_speed", 0.0, 60.0, " [m/s]"), ("wind_direction_deg", -360, 360, " [deg]"),
+                                      ("gust_scale", 0.0, 10.0, ""), ("current_speed", 0.0, 5.0, " [m/s]"),
+                                      ("current_direction_deg", -360, 360, " [deg]"),
+                                      ("sensor_noise_scale", 0.0, 100.0, ""), ("start_speed", -5.0, 10.0, " [m/s]")):
+            object.__setattr__(self, name, _range(owner, name, getattr(self, name), low, high, unit))
+
+
+def _default_vessel():
+    from ocean_warp.wamv import Wamv  # the WAM-V is VRX's vessel; built lazily so configs stay light
+
+    return Wamv()
+
+
+@dataclasses.dataclass(frozen=True)
+class VrxTaskConfig:
+    """One of VRX's tasks on a vessel (see the module's docstring)."""
+
+    kind: VrxTask = VrxTask.STATION_KEEPING
+    vessel: Any = dataclasses.field(default_factory=_default_vessel)
+    """The :class:`~ocean_warp.vessel.Vessel` that sails it (default the WAM-V); its config holds the sea."""
+    goals: int = 1
+    """Goal poses of an episode (station keeping: 1) or gates of the path."""
+    decision_period: float = 0.5
+    """Simulated time of one decision [s]."""
+    episode_time: float = 60.0
+    """The episode's time limit [s]."""
+    reach_error: float = 1.0
+    """Pose error under which a wayfinding goal counts as reached and the next one is shown [m]."""
+    lost_distance: float = 60.0
+    """An episode ends, lost, when the boat is this far from its goal [m]."""
+    position_scale: float = 10.0
+    """Observations divide distances by this [m]."""
+    start: VrxStartConfig = dataclasses.field(default_factory=VrxStartConfig)
+    reward: VrxRewardConfig = dataclasses.field(default_factory=VrxRewardConfig)
+    observation: str = "vrx"
+    """The observation set's name (checked against a policy's)."""
+    actions: tuple[str, ...] | None = None
+    """The vessel's actions the task uses, by name (None: all); the others command their neutral value."""
+
+    def __post_init__(self):
+        owner = "VrxTaskConfig"
+        try:
+            object.__setattr__(self, "kind", VrxTask(self.kind))
+        except ValueError:
+            raise ValueError(f"{owner}.kind must be one of {[k.value for k in VrxTask]}, got {self.kind!r}") from None
+        require_vessel(f"{owner}.vessel", self.vessel)
+        if self.actions is not None:
+            object.__setattr__(self, "actions", tuple(self.actions))
+            require_actions(f"{owner}.actions", self.vessel, self.actions)
+        object.__setattr__(self, "goals", require_int_in_range(owner, "goals", self.goals, 1, 16))
+        if self.kind is VrxTask.STATION_KEEPING and self.goals != 1:
+            raise ValueError(f"{owner}.goals must be 1 for station keeping, got {self.goals}")
+        for name, unit in (("decision_period", " [s]"), ("episode_time", " [s]"), ("reach_error", " [m]"),
+                           ("lost_distance", " [m]"), ("position_scale", " [m]")):
+            object.__setattr__(self, name, require_positive(owner, name, getattr(self, name), unit=unit))
+        dt = self.simulator.dt
+        steps = self.decision_period / dt
+        if abs(steps - round(steps)) > 1e-6 or round(steps) < 1:
+            raise ValueError(f"{owner}.decision_period ({self.decision_period} s) must be a whole number of the "
+                             f"vessel's steps ({dt} s)")
+        if not isinstance(self.start, VrxStartConfig):
+            raise ValueError(f"{owner}.start must be a VrxStartConfig, got {self.start!r}")
+        if not isinstance(self.reward, VrxRewardConfig):
+            raise ValueError(f"{owner}.reward must be a VrxRewardConfig, got {self.reward!r}")
+
+    @property
+    def simulator(self):
+        """The vessel's simulator config (its sea, wind model, time step)."""
+        return self.vessel.config
+
+    @property
+    def steps_per_decision(self) -> int:
+        return int(round(self.decision_period / self.simulator.dt))
+
+    @property
+    def max_episode_length(self) -> int:
+        """The time limit in decisions."""
+        return max(1, int(round(self.episode_time / self.decision_period)))
+
+    @property
+    def route_length(self) -> int:
+        return self.goals
+
+    @property
+    def num_actions(self) -> int:
+        return len(self.vessel.actions)
+
+    def enabled_actions(self) -> list[int]:
+        """1 for each of the vessel's actions the task uses, else 0, in the vessel's column order."""
+        used = set(a.name for a in self.vessel.actions) if self.actions is None else set(self.actions)
+        return [int(a.name in used) for a in self.vessel.actions]

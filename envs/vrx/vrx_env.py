@@ -1,0 +1,209 @@
+"""VRX's tasks, batched: N boats of any vessel (the WAM-V by default), one decision per :meth:`VrxEnv.step`.
+
+A step runs, as one replayed graph on the simulator's device: the vessel's action kernel, ``steps_per_decision``
+physics steps, the reward and episode-end kernel, VRX's score of the episodes that ended, the observation
+kernel (the final observations), a start drawn for every environment that ended, the vessel's masked reset and
+the observation kernel again. It reads only the common state of the vessel's simulator
+(``ocean_warp.vessel.VesselSimulator``) and so never imports a particular vessel.
+"""
+
+from __future__ import annotations
+
+import math
+
+import torch
+import warp as wp
+
+from ocean_warp.device_structs import struct_from
+from ocean_warp.torch_streams import ordered_with_torch
+from ocean_warp.validation import require_int_in_range
+
+from ..protocol import EnvBuffers
+from ..sailing_env import environment_origins
+from ..vessel_env import BatchedVesselEnv
+from .task_config import VrxTask, VrxTaskConfig
+from .vrx_kernels import (POLICY_BASE, PRIVILEGED, VesselStartRows, VrxCourse, VrxParameters, VrxStartDistribution,
+                          vrx_draw_starts, vrx_evaluate, vrx_observe)
+
+__all__ = ["VrxEnv", "GATE_HALF_WIDTH"]
+
+GATE_HALF_WIDTH = 5.0
+"""Half the width between a gate's two buoys [m]."""
+_KIND = {VrxTask.STATION_KEEPING: 0, VrxTask.WAYFINDING: 1, VrxTask.FOLLOW_PATH: 2}
+
+
+class VrxEnv(BatchedVesselEnv):
+    """``num_envs`` boats sailing one of VRX's tasks (a :class:`~ocean_warp.envs.vrx.VrxTaskConfig`), batched; it
+    implements :class:`~ocean_warp.envs.protocol.BatchedEnv`.
+
+    Example::
+
+        env = VrxEnv(VrxTaskConfig(kind="station_keeping"), 4096, device="cuda:0", seed=1)
+        for _ in range(120):
+            env.step(policy(env.buffers.policy_obs))
+        env.buffers.final_score                        # VRX's score of each env's last ended episode
+    """
+
+    def __init__(self, task: VrxTaskConfig, num_envs: int, *, device=None, seed: int = 0, first_env: int = 0):
+        if not isinstance(task, VrxTaskConfig):
+            raise ValueError(f"VrxEnv: task must be a VrxTaskConfig, got {task!r}")
+        self.task = task
+        self.num_envs = require_int_in_range("VrxEnv", "num_envs", num_envs, 1, 2**24)
+        self.seed = require_int_in_range("VrxEnv", "seed", seed, 0, 2**31 - 1)
+        self.first_env = require_int_in_range("VrxEnv", "first_env", first_env, 0, 2**24)
+        self.vessel = task.vessel
+        self.simulator = self.vessel.simulator(self.num_envs, device=device, first_boat=self.first_env)
+        self.device = self.simulator.device
+        self.torch_device = torch.device(wp.device_to_torch(self.device))
+        self.num_actions = task.num_actions
+        self.num_policy_obs = POLICY_BASE + self.num_actions
+        self.num_critic_obs = self.num_policy_obs + PRIVILEGED
+        self.max_episode_length = task.max_episode_length
+        self.decision_period = task.decision_period
+        self.steps_per_decision = task.steps_per_decision
+        self.parameters = struct_from(VrxParameters, task, task.reward, kind=_KIND[task.kind], goal_count=task.goals,
+                                      num_actions=self.num_actions,
+                                      max_episode_length=task.max_episode_length)
+        self.start_distribution = _start_distribution(task, self._start_height())
+
+        n, device, goals = self.num_envs, self.device, task.goals
+        zeros = lambda shape, dtype=float: wp.zeros(shape, dtype=dtype, device=device)  # noqa: E731
+        self._seed = wp.array([self.seed], dtype=int, device=device)
+        origins = environment_origins(self.first_env + n, self.simulator.ocean.config.tile_size, True)
+        self.origin = wp.array(origins[self.first_env:], dtype=wp.vec3, device=device)
+        self.route = zeros((n, goals), wp.vec3)
+        """(N, G) each environment's goal poses: x, y from its origin [m] and the heading [rad]."""
+        self.actions = zeros((n, self.num_actions))
+        self.policy_obs = zeros((n, self.num_policy_obs))
+        self.critic_obs = zeros((n, self.num_critic_obs))
+        self.final_policy_obs = zeros((n, self.num_policy_obs))
+        self.final_critic_obs = zeros((n, self.num_critic_obs))
+        self.reward = zeros(n)
+        self.terminated = zeros(n, wp.bool)
+        self.time_out = zeros(n, wp.bool)
+        self.done = zeros(n, wp.bool)
+        self.reset_mask = zeros(n, wp.int32)
+        self.episode_length = zeros(n, wp.int32)
+        self.episode_return = zeros(n)
+        self.episode_count = zeros(n, int)
+        self.target_index = zeros(n, int)
+        self.target_world = zeros(n, wp.vec3)
+        self.final_return = zeros(n)
+        self.final_length = zeros(n, wp.int32)
+        self.final_success = zeros(n)
+        self.final_status = zeros(n, int)
+        self.final_waypoints = zeros(n, int)
+        self.final_score = wp.full(n, float("nan"), dtype=float, device=device)
+        self.propeller_level = zeros(n, wp.int32)
+        """(N,) zeros: VRX's vessels have no propeller levels (the buffer every env has)."""
+        self.final_position = zeros(n, wp.vec3)
+        self.final_orientation = zeros(n, wp.quat)
+        self._everyone = wp.ones(n, dtype=wp.int32, device=device)
+        enabled = task.enabled_actions()
+        self._enabled_actions = None if all(enabled) else wp.array(enabled, dtype=wp.int32, device=device)
+        """The vessel's action columns the task uses (None: all of them)."""
+        self._course = VrxCourse()
+        c = self._course
+        c.origin, c.route, c.target_index, c.target_world = self.origin, self.route, self.target_index, self.target_world
+        c.previous_error, c.previous_position = zeros(n), zeros(n, wp.vec3)
+        c.episode_length, c.episode_return, c.episode_count = self.episode_length, self.episode_return, self.episode_count
+        c.last_action = zeros((n, self.num_actions))
+        self._start_rows = struct_from(VesselStartRows, self.simulator.start)
+        self.scorer = None
+        """What keeps VRX's score of each episode and writes ``final_score`` (``ocean_warp.envs.vrx.scoring``)."""
+
+        view, state = wp.to_torch, self.simulator.state
+        self.buffers = EnvBuffers(
+            actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
+            final_policy_obs=view(self.final_policy_obs), final_critic_obs=view(self.final_critic_obs),
+            reward=view(self.reward), terminated=view(self.terminated), time_out=view(self.time_out),
+            done=view(self.done), episode_length=view(self.episode_length), episode_return=view(self.episode_return),
+            target=view(self.target_world), origin=view(self.origin), route=view(self.route),
+            waypoint_index=view(self.target_index), position=view(state.position),
+            orientation=view(state.orientation), velocity=view(state.velocity),
+            wind_velocity=view(state.wind_velocity), wind_direction=view(state.wind_mean_direction),
+            propeller_level=view(self.propeller_level), final_position=view(self.final_position),
+            final_orientation=view(self.final_orientation), final_return=view(self.final_return),
+            final_length=view(self.final_length), final_success=view(self.final_success),
+            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
+            final_score=view(self.final_score), obstacles=torch.zeros((n, 0, 4), device=self.torch_device))
+        """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`); ``target``
+        holds the current goal's world x, y and, in column 2, its heading [rad]."""
+        self._start_replay()
+        self.reset()
+
+    # --- the decision step (``BatchedVesselEnv.step`` replays it) --------------------------------------
+    def launch_actions(self) -> None:
+        """The vessel's action kernel (launch only)."""
+        if self._enabled_actions is None:
+            self.simulator.launch_actions(self.actions)
+        else:
+            self.simulator.launch_actions(self.actions, self._enabled_actions)
+
+    def launch_task(self) -> None:
+        """Rewards and episode ends, VRX's scores, the final observations, new episodes for the environments that
+        ended, and the observations of the next decision (launch only)."""
+        state = self.simulator.state
+        wp.launch(vrx_evaluate, dim=self.num_envs, device=self.device,
+                  inputs=[self.parameters, GATE_HALF_WIDTH, self.actions, state.status, state.position,
+                          state.orientation, self._course],
+                  outputs=[self.reward, self.terminated, self.time_out, self.done, self.reset_mask, self.final_return,
+                           self.final_length, self.final_success, self.final_status, self.final_waypoints])
+        if self.scorer is not None:
+            self.scorer.launch_update(self)
+        self._observe(self.final_policy_obs, self.final_critic_obs)
+        self._start_episodes(self.reset_mask)
+        self._observe(self.policy_obs, self.critic_obs)
+
+    def _observe(self, policy: wp.array, critic: wp.array) -> None:
+        state = self.simulator.state
+        wp.launch(vrx_observe, dim=self.num_envs, device=self.device,
+                  inputs=[self.parameters, state.position, state.orientation, state.velocity, state.wind_velocity,
+                          self._course], outputs=[policy, critic])
+
+    def _start_episodes(self, mask: wp.array) -> None:
+        wp.launch(vrx_draw_starts, dim=self.num_envs, device=self.device,
+                  inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self._course,
+                          self._start_rows])
+        self.simulator.reset_masked(mask)
+        if self.scorer is not None:
+            self.scorer.launch_reset(self, mask)
+
+    # --- host calls --------------------------------------------------------------------------------
+    def reset(self, seed: int | None = None) -> None:
+        """Start a new episode in every environment; with ``seed``, restart the whole batch from it."""
+        with ordered_with_torch(self.device):
+            if seed is not None:
+                self.seed = require_int_in_range("VrxEnv.reset", "seed", seed, 0, 2**31 - 1)
+                self._seed.fill_(self.seed)
+                self.episode_count.zero_()
+                self.simulator.rewind()
+            self.terminated.zero_()
+            self.time_out.zero_()
+            self.done.zero_()
+            self._start_episodes(self._everyone)
+            self._observe(self.policy_obs, self.critic_obs)
+            wp.copy(self.final_policy_obs, self.policy_obs)
+            wp.copy(self.final_critic_obs, self.critic_obs)
+            wp.copy(self.final_position, self.simulator.state.position)
+            wp.copy(self.final_orientation, self.simulator.state.orientation)
+
+    def _start_height(self) -> float:
+        rest = getattr(self.simulator, "rest_height", None)
+        return float(rest()) if callable(rest) else 0.0
+
+
+def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDistribution:
+    s, d, rad = task.start, VrxStartDistribution(), math.radians
+    d.goal_distance_low, d.goal_distance_high = s.goal_distance
+    d.goal_spacing_low, d.goal_spacing_high = s.goal_spacing
+    d.wind_speed_low, d.wind_speed_high = s.wind_speed
+    d.wind_direction_low, d.wind_direction_high = rad(s.wind_direction_deg[0]), rad(s.wind_direction_deg[1])
+    d.gust_scale_low, d.gust_scale_high = s.gust_scale
+    d.current_speed_low, d.current_speed_high = s.current_speed
+    d.current_direction_low, d.current_direction_high = (rad(s.current_direction_deg[0]),
+                                                         rad(s.current_direction_deg[1]))
+    d.noise_scale_low, d.noise_scale_high = s.sensor_noise_scale
+    d.start_speed_low, d.start_speed_high = s.start_speed
+    d.start_height = start_height
+    return d
