@@ -71,7 +71,8 @@ class WamvSimulator:
                                    models=[self.wind, self.thrusters, self.sensors], current=self.current)
         self.ocean = ocean
 
-        fleet, thrusters, wind, sensors, current = self.fleet, self.thrusters, self.wind, self.sensors, self.current.state
+        fleet, thrusters, wind, sensors = self.fleet, self.thrusters, self.wind, self.sensors
+        current = self.current.state
         self.state = WamvState(
             position=fleet.state.position, orientation=fleet.state.orientation, velocity=fleet.state.velocity,
             status=fleet.state.status, water_velocity=fleet.state.water_velocity, thrust=thrusters.thrust,

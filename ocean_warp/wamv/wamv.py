@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..meshes import MeshData, concatenate, extruded, tube
+from ..meshes import concatenate, extruded, tube
 from ..vessel import ActionSpec, CollisionShape, VesselPart
 from . import figures
 from .config import ThrusterLayout
+from .hull_mesh import section_radius
 from .simulator import WamvSimulator
 from .simulator_config import WamvSimulatorConfig
 
@@ -62,10 +63,10 @@ class Wamv:
         return tuple(parts)
 
     def collision_shape(self) -> CollisionShape:
-        """The capsule around both pontoons: its axis along the boat's centre line, its radius half the spacing plus
-        a pontoon's radius, its ends at the pontoons'."""
+        """The capsule that holds both pontoons: its axis along the centre line from their stern ends to their bow
+        ends, its radius half the spacing plus a pontoon's (polygonal) section radius."""
         boat = self.config.boat
-        radius = 0.5 * boat.pontoon_spacing + boat.pontoon_radius
-        reach = max(0.5 * boat.pontoon_length - radius, 0.0)
-        return CollisionShape(stern=(boat.pontoon_center_x - reach, 0.0, 0.0),
-                              bow=(boat.pontoon_center_x + reach, 0.0, 0.0), radius=radius)
+        radius = 0.5 * boat.pontoon_spacing + section_radius(boat.pontoon_radius, boat.pontoon_sides)
+        half = 0.5 * boat.pontoon_length
+        return CollisionShape(stern=(boat.pontoon_center_x - half, 0.0, 0.0),
+                              bow=(boat.pontoon_center_x + half, 0.0, 0.0), radius=radius)
