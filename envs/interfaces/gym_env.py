@@ -22,7 +22,7 @@ import torch
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
-from ..sailing_env import SailingEnv
+from ..env_factory import make_env
 from ..protocol import BatchedEnv
 from ..registration import make_task_config
 
@@ -30,10 +30,10 @@ __all__ = ["SailingVectorEnv", "SailingEnvSingle", "action_space", "observation_
            "build_sailing_env"]
 
 
-def action_space() -> gym.spaces.Box:
-    """One boat's action space: Box(-1, 1, (3,), float32) = propeller, sheet, rudder (each scaled; see
+def action_space(size: int = 3) -> gym.spaces.Box:
+    """One boat's action space: Box(-1, 1, (size,), float32); the E-Boat's 3 = propeller, sheet, rudder (each scaled; see
     ``ocean_warp.envs.tasks``). The same for every task: one without propeller ignores the first."""
-    return gym.spaces.Box(-1.0, 1.0, shape=(3,), dtype=np.float32)
+    return gym.spaces.Box(-1.0, 1.0, shape=(size,), dtype=np.float32)
 
 
 def observation_space(size: int) -> gym.spaces.Box:
@@ -46,19 +46,19 @@ def to_numpy(tensor: torch.Tensor) -> np.ndarray:
     return tensor.detach().to("cpu", copy=True).numpy()
 
 
-def as_actions(actions: Any, num_envs: int, device: torch.device) -> torch.Tensor:
-    """Actions as a (num_envs, 3) float32 tensor on ``device``; raises ValueError on a wrong shape."""
+def as_actions(actions: Any, num_envs: int, device: torch.device, num_actions: int = 3) -> torch.Tensor:
+    """Actions as a (num_envs, num_actions) float32 tensor on ``device``; raises ValueError on a wrong shape."""
     tensor = torch.as_tensor(np.asarray(actions, dtype=np.float32), device=device)
-    if tensor.numel() != num_envs * 3:
-        raise ValueError(f"actions must have shape ({num_envs}, 3), got {tuple(tensor.shape)}")
-    return tensor.reshape(num_envs, 3)
+    if tensor.numel() != num_envs * num_actions:
+        raise ValueError(f"actions must have shape ({num_envs}, {num_actions}), got {tuple(tensor.shape)}")
+    return tensor.reshape(num_envs, num_actions)
 
 
 def build_sailing_env(task: Any, num_envs: int, device: str, seed: int, max_episode_steps: int | None,
-                      overrides: dict[str, Any]) -> SailingEnv:
-    """The SailingEnv for a task id or config, with ``max_episode_steps`` [decisions] and overrides."""
+                      overrides: dict[str, Any]):
+    """The env (``make_env``) for a task id or config, with ``max_episode_steps`` [decisions] and overrides."""
     config = make_task_config(task, max_episode_steps=max_episode_steps, **overrides)
-    return SailingEnv(config, num_envs, device=device, seed=seed)
+    return make_env(config, num_envs, device=device, seed=seed)
 
 
 class SailingVectorEnv(gym.vector.VectorEnv):
@@ -100,7 +100,7 @@ class SailingVectorEnv(gym.vector.VectorEnv):
         self.metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": []}
         self.render_mode = None
         self.single_observation_space = observation_space(env.num_policy_obs)
-        self.single_action_space = action_space()
+        self.single_action_space = action_space(env.num_actions)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._device = torch.device(env.torch_device)
@@ -125,7 +125,7 @@ class SailingVectorEnv(gym.vector.VectorEnv):
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
         """Run one decision for all envs; see the class docstring for what comes back."""
-        self.env.step(as_actions(actions, self.num_envs, self._device))
+        self.env.step(as_actions(actions, self.num_envs, self._device, self.env.num_actions))
         buffers = self.env.buffers
         observations = to_numpy(buffers.policy_obs)
         rewards = to_numpy(buffers.reward)
@@ -170,7 +170,7 @@ class SailingEnvSingle(gym.Env):
         self.render_mode = None
         self.env = build_sailing_env(task, 1, device, seed, max_episode_steps, task_overrides)
         self.observation_space = observation_space(self.env.num_policy_obs)
-        self.action_space = action_space()
+        self.action_space = action_space(self.env.num_actions)
         self._device = torch.device(self.env.torch_device)
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -184,7 +184,7 @@ class SailingEnvSingle(gym.Env):
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         """Run one decision; returns the final observation when the episode ends."""
-        self.env.step(as_actions(action, 1, self._device))
+        self.env.step(as_actions(action, 1, self._device, self.env.num_actions))
         buffers = self.env.buffers
         terminated = bool(buffers.terminated[0])
         truncated = bool(buffers.time_out[0])

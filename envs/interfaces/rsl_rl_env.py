@@ -18,7 +18,7 @@ import torch
 from rsl_rl.env import VecEnv
 from tensordict import TensorDict
 
-from ..sailing_env import SailingEnv
+from ..env_factory import make_env
 from ..protocol import BatchedEnv
 
 __all__ = ["RslRlVecEnv"]
@@ -71,7 +71,7 @@ class RslRlVecEnv(VecEnv):
             device: Warp device ("cpu", "cuda:0").
             seed: seed of the per-env random streams.
         """
-        return cls(SailingEnv(task, num_envs, device=device, seed=seed))
+        return cls(make_env(task, num_envs, device=device, seed=seed))
 
     @property
     def observation_views(self) -> TensorDict:

@@ -59,7 +59,8 @@ class Sb3VecEnv(VecEnv):
         else:
             self.env = build_sailing_env(task, num_envs, device, seed, max_episode_steps, task_overrides)
         self.render_mode = None  # read by VecEnv.__init__ through get_attr
-        super().__init__(self.env.num_envs, observation_space(self.env.num_policy_obs), action_space())
+        super().__init__(self.env.num_envs, observation_space(self.env.num_policy_obs),
+                         action_space(self.env.num_actions))
         self._device = torch.device(self.env.torch_device)
         self._actions: torch.Tensor | None = None
         self._start_time = time.time()
@@ -78,7 +79,7 @@ class Sb3VecEnv(VecEnv):
 
     def step_async(self, actions: np.ndarray) -> None:
         """Stage the actions (N, 3) in [-1, 1] for :meth:`step_wait`."""
-        self._actions = as_actions(actions, self.num_envs, self._device)
+        self._actions = as_actions(actions, self.num_envs, self._device, self.env.num_actions)
 
     def step_wait(self) -> VecEnvStepReturn:
         """Run one decision with the staged actions.

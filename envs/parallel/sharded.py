@@ -47,10 +47,8 @@ from ocean_warp.validation import require_int_in_range
 
 from ocean_warp.devices import init_warp
 from ..protocol import EnvBuffers, episode_log
-from ..sailing_env import SailingEnv
+from ..env_factory import env_sizes, make_env, require_task
 from .shared_ocean import SharedOcean, ocean_updates_per_decision
-from ..tasks.task_kernels import PRIVILEGED_OBS, policy_observation_count
-from ..tasks.task_configs import TaskConfig
 
 __all__ = ["ShardedSailingEnv", "shard_bounds"]
 
@@ -70,31 +68,31 @@ def shard_bounds(num_envs: int, workers: int) -> list[tuple[int, int]]:
     return bounds
 
 
-def _buffer_layout(task: TaskConfig) -> dict[str, tuple[tuple[int, ...], torch.dtype]]:
+def _buffer_layout(task) -> dict[str, tuple[tuple[int, ...], torch.dtype]]:
     """Per-environment shape and dtype of every :class:`EnvBuffers` field for ``task``."""
-    p = policy_observation_count(task)
-    c = p + PRIVILEGED_OBS
+    sizes = env_sizes(task)
+    p, c = sizes.num_policy_obs, sizes.num_critic_obs
     f32, i32 = torch.float32, torch.int32
-    return {"actions": ((3,), f32), "policy_obs": ((p,), f32), "critic_obs": ((c,), f32),
+    return {"actions": ((sizes.num_actions,), f32), "policy_obs": ((p,), f32), "critic_obs": ((c,), f32),
             "final_policy_obs": ((p,), f32), "final_critic_obs": ((c,), f32), "reward": ((), f32),
             "terminated": ((), torch.bool), "time_out": ((), torch.bool), "done": ((), torch.bool),
             "episode_length": ((), i32), "episode_return": ((), f32), "target": ((3,), f32), "origin": ((3,), f32),
-            "route": ((task.route_length, 3), f32), "waypoint_index": ((), i32), "position": ((3,), f32),
+            "route": ((sizes.route_length, 3), f32), "waypoint_index": ((), i32), "position": ((3,), f32),
             "orientation": ((4,), f32), "velocity": ((6,), f32), "wind_velocity": ((3,), f32),
             "wind_direction": ((), f32), "propeller_level": ((), i32), "final_position": ((3,), f32),
             "final_orientation": ((4,), f32), "final_return": ((), f32), "final_length": ((), i32),
             "final_success": ((), f32), "final_status": ((), i32), "final_waypoints": ((), i32),
             "final_score": ((), f32),
-            "obstacles": ((task.obstacle_slots, 4), f32)}
+            "obstacles": ((sizes.obstacle_slots, 4), f32)}
 
 
 # --- the worker side ---------------------------------------------------------------------------------
 class _Shard:
     """A worker's SailingEnv for global environments [first, first + count) and its rows of shared memory."""
 
-    def __init__(self, task: TaskConfig, shared: dict[str, torch.Tensor], first: int, count: int, seed: int,
+    def __init__(self, task, shared: dict[str, torch.Tensor], first: int, count: int, seed: int,
                  ocean_slots: torch.Tensor | None):
-        self.env = SailingEnv(task, count, device="cpu", seed=seed, first_env=first)
+        self.env = make_env(task, count, device="cpu", seed=seed, first_env=first)
         self.ocean_cursor = None
         if ocean_slots is not None:
             self.updates_per_decision = ocean_updates_per_decision(task)
@@ -137,7 +135,7 @@ class _Shard:
         raise ValueError(f"unknown command {command!r}")
 
 
-def _worker_main(conn, shared: dict[str, torch.Tensor], ocean_slots: torch.Tensor | None, task: TaskConfig,
+def _worker_main(conn, shared: dict[str, torch.Tensor], ocean_slots: torch.Tensor | None, task,
                  first: int, count: int, seed: int, parent_pid: int, log_level: int) -> None:
     """A worker process: build the shard, answer with its sea's wave height, then run commands until
     "close", until the parent's end of the pipe closes or until the parent dies. An exception is sent
@@ -302,12 +300,9 @@ class ShardedSailingEnv:
             evaluates its own; the results are the same bit for bit).
     """
 
-    num_actions = SailingEnv.num_actions
-
-    def __init__(self, task: TaskConfig, num_envs: int, *, workers: int, seed: int = 0, timeout: float = 300.0,
+    def __init__(self, task, num_envs: int, *, workers: int, seed: int = 0, timeout: float = 300.0,
                  shared_ocean: bool = True):
-        if not isinstance(task, TaskConfig):
-            raise ValueError(f"ShardedSailingEnv: task must be a TaskConfig (WaypointConfig, ...), got {task!r}")
+        require_task("ShardedSailingEnv", task)
         self.num_envs = require_int_in_range("ShardedSailingEnv", "num_envs", num_envs, 1, 2**24)
         self.workers = require_int_in_range("ShardedSailingEnv", "workers", workers, 1, self.num_envs)
         self.seed = require_int_in_range("ShardedSailingEnv", "seed", seed, 0, 2**31 - 1)
@@ -315,8 +310,10 @@ class ShardedSailingEnv:
             raise ValueError(f"ShardedSailingEnv.timeout must be a positive number of seconds, got {timeout!r}")
         self.timeout = float(timeout)
         self.task = task
-        self.num_policy_obs = policy_observation_count(task)
-        self.num_critic_obs = self.num_policy_obs + PRIVILEGED_OBS
+        sizes = env_sizes(task)
+        self.num_actions = sizes.num_actions
+        self.num_policy_obs = sizes.num_policy_obs
+        self.num_critic_obs = sizes.num_critic_obs
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period
         self.steps_per_decision = task.steps_per_decision

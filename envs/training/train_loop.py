@@ -56,7 +56,7 @@ from ocean_warp.devices import resolve_device
 from ocean_warp.termination import Terminated
 
 from .agents import TrainConfig, agent_config
-from ..sailing_env import SailingEnv
+from ..env_factory import make_env
 from .distributed import (
     DEFAULT_TIMEOUT_S,
     DistributedRunner,
@@ -344,8 +344,8 @@ class Training:
             if self.workers > 1:
                 self.env = ShardedSailingEnv(config.train_task, self.num_envs, workers=self.workers, seed=self.seed)
             else:
-                self.env = SailingEnv(config.train_task, self.num_envs, device=self.device, seed=self.seed,
-                                      first_env=context.first_env(self.num_envs))
+                self.env = make_env(config.train_task, self.num_envs, device=self.device, seed=self.seed,
+                                    first_env=context.first_env(self.num_envs))
             self.vec = RslRlVecEnv(self.env)
             self.full_budget = torch.zeros(self.num_envs, dtype=torch.bool, device=self.vec.device)
             runner_config = config.ppo.runner_config(config.steps_per_env)
