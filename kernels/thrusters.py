@@ -131,17 +131,22 @@ def _action(value: float) -> float:
 @wp.kernel(enable_backward=False)
 def thruster_actions(
     actions: wp.array2d(dtype=float),
-    mask: wp.array(dtype=wp.int32),
+    enabled: wp.array(dtype=wp.int32),
     angle_limit: float,
     thrust_command: wp.array2d(dtype=float),
     angle_command: wp.array2d(dtype=float),
 ):
-    """Every boat whose ``mask`` is non-zero: columns 0 and 1 of its actions (left, right) are its thrust commands,
-    and with azimuth thrusters (``angle_limit`` > 0) columns 2 and 3 times ``angle_limit`` [rad] its angles."""
+    """Columns 0 and 1 of each boat's actions (left, right) are its thrust commands, and with azimuth thrusters
+    (``angle_limit`` > 0) columns 2 and 3 times ``angle_limit`` [rad] its angles; a column whose ``enabled`` entry
+    is 0 commands 0 (no thrust, thruster centred)."""
     boat = wp.tid()
-    if mask[boat] == 0:
-        return
     for k in range(2):
-        thrust_command[boat, k] = _action(actions[boat, k])
+        thrust = float(0.0)
+        if enabled[k] != 0:
+            thrust = _action(actions[boat, k])
+        thrust_command[boat, k] = thrust
         if angle_limit > 0.0:
-            angle_command[boat, k] = _action(actions[boat, 2 + k]) * angle_limit
+            angle = float(0.0)
+            if enabled[2 + k] != 0:
+                angle = _action(actions[boat, 2 + k]) * angle_limit
+            angle_command[boat, k] = angle

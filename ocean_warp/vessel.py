@@ -92,8 +92,9 @@ class VesselSimulator(Protocol):
     def reset_masked(self, mask, start=None) -> None:
         """Device path: every boat whose ``mask`` (N,) int32 is non-zero goes to its row of ``start``."""
 
-    def launch_actions(self, actions, mask=None) -> None:
-        """Turn ``actions`` (N, A) in [-1, 1] into the simulator's commands (graph-safe launches)."""
+    def launch_actions(self, actions, enabled=None) -> None:
+        """Turn ``actions`` (N, A) in [-1, 1] into the simulator's commands (graph-safe launches); ``enabled`` (A,)
+        int32 on the device: a zero switches that column off (it commands its neutral value; None: all on)."""
 
     def launch_step(self) -> None:
         """One ``dt`` of physics, launches only (to embed in a larger graph)."""

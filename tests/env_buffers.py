@@ -13,5 +13,5 @@ def assert_same_buffers(actual, expected, when: str) -> None:
     """Every field of two :class:`EnvBuffers` equal bit for bit (NaN equal to NaN: a score the task does not keep);
     ``when`` names the moment in the message."""
     for field in dataclasses.fields(EnvBuffers):
-        torch.testing.assert_close(getattr(actual, field.name), getattr(expected, field.name), rtol=0, atol=0, equal_nan=True,
-                                   msg=f"{field.name} {when}")
+        torch.testing.assert_close(getattr(actual, field.name), getattr(expected, field.name), rtol=0, atol=0,
+                                   equal_nan=True, msg=f"{field.name} {when}")

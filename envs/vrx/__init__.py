@@ -1,6 +1,6 @@
 """VRX's tasks (station keeping, wayfinding, following a path) as batched RL tasks on any vessel."""
 
-from .task_config import VrxRewardConfig, VrxStartConfig, VrxTask, VrxTaskConfig
+from .task_config import VrxRewardConfig, VrxStartConfig, VrxTask, VrxTaskConfig, wamv_vessel
 from .vrx_env import VrxEnv
 
-__all__ = ["VrxTask", "VrxTaskConfig", "VrxRewardConfig", "VrxStartConfig", "VrxEnv"]
+__all__ = ["VrxTask", "VrxTaskConfig", "VrxRewardConfig", "VrxStartConfig", "VrxEnv", "wamv_vessel"]

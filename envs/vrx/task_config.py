@@ -17,7 +17,7 @@ from typing import Any
 from ocean_warp.validation import require_int_in_range, require_positive
 from ocean_warp.vessel import require_actions, require_vessel
 
-__all__ = ["VrxTask", "VrxRewardConfig", "VrxStartConfig", "VrxTaskConfig"]
+__all__ = ["VrxTask", "VrxRewardConfig", "VrxStartConfig", "VrxTaskConfig", "wamv_vessel"]
 
 
 class VrxTask(str, enum.Enum):
@@ -98,10 +98,16 @@ class VrxStartConfig:
             object.__setattr__(self, name, _range(owner, name, getattr(self, name), low, high, unit))
 
 
-def _default_vessel():
-    from ocean_warp.wamv import Wamv  # the WAM-V is VRX's vessel; built lazily so configs stay light
+def wamv_vessel(significant_wave_height: float = 0.3, *, profile: str = "vrx", thrusters: str = "fixed"):
+    """The WAM-V on a JONSWAP sea of ``significant_wave_height`` [m] (peak period 3 s, a 256 m tile), with
+    ``profile`` ("vrx" by default: per-triangle hydrostatics and VRX's lumped damping; "physics" resists
+    surge by friction alone so far and sails too fast) and ``thrusters`` ("fixed" or "azimuth")."""
+    from ocean_warp.ocean_config import OceanConfig
+    from ocean_warp.wamv import Wamv, WamvConfig, WamvSimulatorConfig  # built lazily so configs stay light
 
-    return Wamv()
+    sea = OceanConfig(tile_size=256.0, resolution=64, significant_wave_height=significant_wave_height,
+                      peak_period=3.0)
+    return Wamv(WamvSimulatorConfig(boat=WamvConfig(profile=profile, thrusters=thrusters), ocean=sea))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,7 +115,7 @@ class VrxTaskConfig:
     """One of VRX's tasks on a vessel (see the module's docstring)."""
 
     kind: VrxTask = VrxTask.STATION_KEEPING
-    vessel: Any = dataclasses.field(default_factory=_default_vessel)
+    vessel: Any = dataclasses.field(default_factory=wamv_vessel)
     """The :class:`~ocean_warp.vessel.Vessel` that sails it (default the WAM-V); its config holds the sea."""
     goals: int = 1
     """Goal poses of an episode (station keeping: 1) or gates of the path."""

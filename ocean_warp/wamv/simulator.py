@@ -9,6 +9,7 @@ import warp as wp
 from ..current import Current
 from ..fleet import Fleet
 from ..frames import quaternion_from_roll_pitch_yaw
+from ..hull_form import floating_waterline
 from ..masks import mask_of, rows_at
 from ..ocean import Ocean
 from ..sensors import Sensors
@@ -17,6 +18,7 @@ from ..torch_streams import ordered_with_torch
 from ..validation import require_indices, require_int_in_range, require_per_item, require_rows
 from ..wind import Wind
 from . import figures
+
 from .boat import wamv_boat_type
 from .config import ThrusterLayout
 from .simulator_config import WamvSimulatorConfig
@@ -144,6 +146,11 @@ class WamvSimulator:
         with ordered_with_torch(self.device):
             self.reset_masked(mask_of(indices, self.count, self.device))
 
+    def rest_height(self) -> float:
+        """Height [m] of the body origin above still water when the boat floats upright at rest (the waterline of
+        its hull mesh holding its mass in the config's water)."""
+        return -floating_waterline(self.boat_type.hull, self.boat_type.mass, self.config.water.density)
+
     def reset_masked(self, mask: wp.array, start: WamvStart | None = None) -> None:
         """Device path of every reset: each boat whose ``mask`` (N,) int32 is non-zero goes to its row of ``start``
         (default ``self.start``): pose, velocity, its environment's mean wind and steady current, with flags,
@@ -156,16 +163,16 @@ class WamvSimulator:
         self.thrusters.reset_masked(mask)
         self.sensors.reset_masked(mask, self.fleet, start.noise_scale)
 
-    def launch_actions(self, actions, mask: wp.array | None = None) -> None:
+    def launch_actions(self, actions, enabled: wp.array | None = None) -> None:
         """``actions`` (N, A) float32 in [-1, 1] (a Warp array or a torch tensor on the device; columns as
-        ``Wamv.actions``) -> thrust commands and, with azimuth thrusters, angles (action x ``max_thruster_angle``)
-        of the boats whose ``mask`` is non-zero (None: all). Launches only (graph-safe)."""
+        ``Wamv.actions``) -> thrust commands and, with azimuth thrusters, angles (action x ``max_thruster_angle``);
+        ``enabled`` (A,) int32: a zero switches that column off (None: all on). Launches only (graph-safe)."""
         if not isinstance(actions, wp.array):
             actions = wp.from_torch(actions, dtype=wp.float32)
         if actions.ndim != 2 or actions.shape[0] != self.count or actions.shape[1] < self.action_count:
             raise ValueError(f"WamvSimulator.launch_actions: actions must be ({self.count}, {self.action_count}) "
                              f"float32, got shape {actions.shape}")
-        self.thrusters.launch_actions(actions, mask)
+        self.thrusters.launch_actions(actions, enabled)
 
     def rewind(self) -> None:
         """Time and the wind's and sensors' random streams back to their start; launches only."""

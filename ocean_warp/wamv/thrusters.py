@@ -31,6 +31,7 @@ class Thrusters:
         self.thrust_command, self.angle_command = zeros(), zeros()
         self.thrust, self.thruster_angle = zeros(), zeros()
         self._every_boat = wp.ones(self.count, dtype=wp.int32, device=self.device)
+        self._every_column = wp.ones(4, dtype=wp.int32, device=self.device)
 
     def substep(self, simulator) -> None:
         fleet = simulator.fleet
@@ -44,9 +45,10 @@ class Thrusters:
         wp.launch(reset_thrusters, dim=self.count, device=self.device, inputs=[mask],
                   outputs=[self.thrust_command, self.angle_command, self.thrust, self.thruster_angle])
 
-    def launch_actions(self, actions: wp.array, mask: wp.array | None = None) -> None:
-        """Actions (N, A) float32 in [-1, 1] -> commands of the boats whose ``mask`` is non-zero (None: all):
-        columns 0, 1 the thrust commands; with azimuth thrusters columns 2, 3 times the angle limit."""
+    def launch_actions(self, actions: wp.array, enabled: wp.array | None = None) -> None:
+        """Actions (N, A) float32 in [-1, 1] -> commands: columns 0, 1 the thrust commands; with azimuth thrusters
+        columns 2, 3 times the angle limit; ``enabled`` (A,) int32: a zero switches its column off (commands 0;
+        None: all on)."""
         wp.launch(thruster_actions, dim=self.count, device=self.device,
-                  inputs=[actions, self._every_boat if mask is None else mask, self.parameters.angle_limit],
+                  inputs=[actions, self._every_column if enabled is None else enabled, self.parameters.angle_limit],
                   outputs=[self.thrust_command, self.angle_command])

@@ -62,17 +62,21 @@ def test_azimuth_angle_is_clamped_and_turns_to_port(device):
 
 
 def test_actions_scale_to_commands_and_nan_flags_the_boat(device):
-    """launch_actions: thrust = clamp(action), angle = action x limit; NaN flags BAD_INPUT, others sail on."""
+    """launch_actions: thrust = clamp(action), angle = action x limit, a column switched off commands 0; NaN flags
+    BAD_INPUT, others sail on."""
     sim = simulator(3, device, thrusters="azimuth", max_thruster_angle=0.5)
     sim.reset(position=(0.0, 0.0, REST_HEIGHT))
     actions = np.array([[0.5, -2.0, 0.4, -1.0], [0.0, 1.0, 0.0, 0.0], [np.nan, 0.0, 0.0, 0.0]], dtype=np.float32)
-    mask = wp.array(np.array([1, 0, 1], dtype=np.int32), device=device)
+    enabled = wp.array(np.array([1, 0, 1, 1], dtype=np.int32), device=device)
     with ordered_with_torch(sim.device):
-        sim.launch_actions(wp.array(actions, dtype=float, device=device), mask)
+        sim.launch_actions(wp.array(actions, dtype=float, device=device), enabled)
     command = sim.control.thrust_command.numpy()
-    np.testing.assert_allclose(command[0], [0.5, -1.0])
+    np.testing.assert_allclose(command[0], [0.5, 0.0])  # the right thruster switched off
     np.testing.assert_allclose(sim.control.angle_command.numpy()[0], [0.2, -0.5], rtol=1e-6)
-    np.testing.assert_array_equal(command[1], [0.0, 0.0])  # masked out
+    np.testing.assert_array_equal(command[1], [0.0, 0.0])
+    with ordered_with_torch(sim.device):
+        sim.launch_actions(wp.array(actions, dtype=float, device=device))
+    np.testing.assert_allclose(sim.control.thrust_command.numpy()[:2], [[0.5, -1.0], [0.0, 1.0]])
     sim.step()
     status = sim.state.status.numpy()
     assert status[2] & BoatStatus.BAD_INPUT and status[0] == 0 and status[1] == 0
