@@ -36,12 +36,12 @@ from ocean_warp.envs.interfaces.gym_env import SailingVectorEnv
 from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 
 
-def policy_network(inputs: int, hidden: list[int], device) -> torch.nn.Module:
+def policy_network(inputs: int, hidden: list[int], device, outputs: int = 3) -> torch.nn.Module:
     layers, width = [], inputs
     for size in hidden:
         layers += [torch.nn.Linear(width, size), torch.nn.ELU()]
         width = size
-    layers += [torch.nn.Linear(width, 3), torch.nn.Tanh()]
+    layers += [torch.nn.Linear(width, outputs), torch.nn.Tanh()]
     return torch.nn.Sequential(*layers).to(device).eval()
 
 
