@@ -16,7 +16,8 @@ does) and the task ids (``registration``). By role, in subpackages (each ``__ini
   ``ocean_warp.envs.interfaces.sb3_env``).
 - ``parallel``: environments over CPU worker processes. ``controllers``: ``SailingAutopilot``, a classical
   sailing autopilot that runs any task in place of a policy. ``training``: PPO, checkpoints, the shipped
-  policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``.
+  policies. ``evaluation``: controllers sailing a task's runs, their results and files. ``apps``:
+  ``ocean-warp eval``, ``demo`` and ``export-usd``.
 """
 
 from .registration import TASK_IDS, make_task_config, register_envs

@@ -19,19 +19,18 @@ from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
 from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv
 from ocean_warp.envs.training import policies
-from ocean_warp.envs.apps.evaluation import (
+from ocean_warp.envs.apps.evaluation import _policy_for, main
+from ocean_warp.envs.evaluation import (
     AutopilotController,
     FleetController,
     PolicyController,
     RecordedDecision,
-    _policy_for,
     evaluate_mission,
     evaluation_task,
-    main,
     mission_task,
     sail_mission,
 )
-from ocean_warp.envs.apps.mission_metrics import (
+from ocean_warp.envs.evaluation.mission_metrics import (
     cross_track_profile,
     cross_track_spread,
     leg_indices,
@@ -530,8 +529,22 @@ def test_shipped_policy_path(monkeypatch):
         policies.shipped_policy_path("ocean_warp/EBoatMission-v0")
 
 
+def test_apps_do_not_import_the_eval_command():
+    """render, demo, export-usd, the fleet scenario and the success rate take what they sail from
+    ocean_warp.envs.evaluation; the eval command's module (its options and main) stays out of them."""
+    import subprocess
+    import sys
+
+    apps = ("render", "demo", "usd_export", "fleet_scenario", "success_rate")
+    code = ("import sys\n" + "".join(f"import ocean_warp.envs.apps.{name}\n" for name in apps)
+            + "print('ocean_warp.envs.apps.evaluation' in sys.modules, 'ocean_warp.envs.evaluation' in sys.modules)")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["False", "True"]
+
+
 def test_benchmark_uses_the_runner(monkeypatch):
-    """benchmarks/studies/autopilot_mission.py sails through ocean_warp.envs.apps.evaluation (no loop of its own)."""
+    """benchmarks/studies/autopilot_mission.py sails through ocean_warp.envs.evaluation (no loop of its own)."""
     from benchmarks.studies import autopilot_mission
 
     calls = []
@@ -694,7 +707,7 @@ def test_collisions_are_counted_against_a_run_that_hits_a_pile(tmp_path):
     BoatStatus.COLLIDED where its bow meets the pile, long before the time limit; run 1 does not. The
     collisions column counts 1, runs.csv ends run 0 "collided", and the files keep the layout the reset drew
     (the pile where the task puts it), equal to ``buffers.obstacles`` after a reset."""
-    from ocean_warp.envs.apps.evaluation import FixedController, MissionEvaluation
+    from ocean_warp.envs.evaluation import FixedController, MissionEvaluation
     from ocean_warp.fleet import BoatStatus
 
     task = tiny_avoid()
