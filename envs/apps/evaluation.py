@@ -81,6 +81,9 @@ Columns of results.csv:
                         reached the time limit
   motor_use             fraction of decisions with a propeller level other than 0 commanded (as the
                         environment applied it: always 0 on a task without propeller), mean over runs
+  vrx_score             the task's VRX score (``env.buffers.final_score`` at the end of each run's first
+                        episode), mean over runs; empty on a task without one (every E-Boat task). runs.csv
+                        has each run's in its own vrx_score column (empty likewise)
 """
 
 from __future__ import annotations

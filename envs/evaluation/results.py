@@ -48,6 +48,9 @@ class ControllerResult:
     from the run's origin [m], radius [m], kind (0 an empty row, 1 a buoy, 2 a pile:
     ``ocean_warp.envs.tasks.obstacle_course.OBSTACLE_*``); None (kept as (N, 0, 4)): a task without
     obstacles."""
+    vrx_score: np.ndarray | None = None
+    """(N,) the task's VRX score of each run's first episode (``env.buffers.final_score`` where it ended), NaN
+    where the task has none (every E-Boat task); None: NaN for every run."""
 
     def __post_init__(self):
         runs = len(self.paths)
@@ -56,6 +59,11 @@ class ControllerResult:
             raise ValueError(f"ControllerResult.obstacles must be ({runs}, K, 4) (x, y, radius, kind per run and "
                              f"row), got shape {obstacles.shape}")
         self.obstacles = obstacles
+        score = np.full(runs, np.nan) if self.vrx_score is None else np.asarray(self.vrx_score, np.float64)
+        if score.shape != (runs,):
+            raise ValueError(f"ControllerResult.vrx_score must be ({runs},) (one score per run), got shape "
+                             f"{score.shape}")
+        self.vrx_score = score
         self.distance_m = np.array([path_length(p.xy) for p in self.paths])
         crossings = np.array([wind_crossings(p.heading, w) for p, w in zip(self.paths, self.wind_direction)],
                              dtype=np.int64).reshape(-1, 2)
@@ -89,7 +97,8 @@ class ControllerResult:
                                 time_s=self.time_s[index], waypoints=self.waypoints[index], status=self.status[index],
                                 time_out=self.time_out[index], wind_direction=self.wind_direction[index],
                                 routes=self.routes[index], start_point=self.start_point, own_tacks=pick(self.own_tacks),
-                                own_gybes=pick(self.own_gybes), obstacles=self.obstacles[index])
+                                own_gybes=pick(self.own_gybes), obstacles=self.obstacles[index],
+                                vrx_score=self.vrx_score[index])
 
     @property
     def capsized(self) -> np.ndarray:
@@ -129,7 +138,8 @@ class ControllerResult:
                 "gybes_mean": float(self.gybes.mean()), "cross_track_spread_m": self.cross_track_spread,
                 "capsizes": int(self.capsized.sum()), "collisions": int(self.collided.sum()),
                 "lost": int(self.lost.sum()),
-                "time_outs": int(self.time_out.sum()), "motor_use": float(np.nanmean(self.motor_use))}
+                "time_outs": int(self.time_out.sum()), "motor_use": float(np.nanmean(self.motor_use)),
+                "vrx_score": score_cell(float(self.vrx_score.mean()) if self.runs else math.nan)}
 
     def run_rows(self) -> list[dict]:
         """Its rows of runs.csv (``RUN_COLUMNS``)."""
@@ -141,7 +151,8 @@ class ControllerResult:
                          "gybes": int(self.gybes[i]),
                          "own_tacks": count_cell(self.own_tacks, i), "own_gybes": count_cell(self.own_gybes, i),
                          "motor_use": float(self.motor_use[i]), "start_x_m": float(path.xy[0, 0]),
-                         "start_y_m": float(path.xy[0, 1]), "start_heading_deg": math.degrees(path.heading[0])})
+                         "start_y_m": float(path.xy[0, 1]), "start_heading_deg": math.degrees(path.heading[0]),
+                         "vrx_score": score_cell(float(self.vrx_score[i]))})
         return rows
 
 
@@ -153,3 +164,9 @@ def kept_counts(values: np.ndarray) -> np.ndarray | None:
 def count_cell(values: np.ndarray | None, run: int):
     """A run's own count in runs.csv: the whole number, or empty where its controller keeps none."""
     return "" if values is None or np.isnan(values[run]) else int(values[run])
+
+
+def score_cell(value: float):
+    """A VRX score in results.csv and runs.csv: the number, or empty where it is NaN (a task without a score, or a
+    mean over runs of which one has none)."""
+    return "" if math.isnan(value) else value

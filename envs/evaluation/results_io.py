@@ -23,12 +23,13 @@ __all__ = ["TABLE_COLUMNS", "RUN_COLUMNS", "MissionEvaluation"]
 
 TABLE_COLUMNS = ("controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
                  "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
-                 "collisions", "lost", "time_outs", "motor_use")
+                 "collisions", "lost", "time_outs", "motor_use", "vrx_score")
 """Columns of results.csv (module docstring: their definitions)."""
 RUN_COLUMNS = ("controller", "run", "completed", "end", "time_s", "waypoints", "distance_m", "tacks", "gybes",
-               "own_tacks", "own_gybes", "motor_use", "start_x_m", "start_y_m", "start_heading_deg")
+               "own_tacks", "own_gybes", "motor_use", "start_x_m", "start_y_m", "start_heading_deg", "vrx_score")
 """Columns of runs.csv: per run, the first episode's outcome; time_s is when it ended, however it ended;
-own_tacks / own_gybes are the controller's own counts where it keeps them (the autopilot), else empty."""
+own_tacks / own_gybes are the controller's own counts where it keeps them (the autopilot), else empty;
+vrx_score is the task's VRX score of the episode (``env.buffers.final_score``), empty where the task has none."""
 
 
 @dataclasses.dataclass

@@ -52,6 +52,7 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
     outcome = {name: np.zeros(n, dtype=kind) for name, kind in (
         ("success", bool), ("time_s", np.float64), ("waypoints", np.int64), ("status", np.int64),
         ("time_out", bool))}
+    outcome["vrx_score"] = np.full(n, np.nan)
     outcome.update(own_tacks=np.full(n, np.nan), own_gybes=np.full(n, np.nan))
     length = np.zeros(n, dtype=np.int64)
     finished = np.zeros(n, dtype=bool)
@@ -83,6 +84,7 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
                 outcome["waypoints"][done] = final_waypoints[done]
                 outcome["status"][done] = host(b.final_status)[done]
                 outcome["time_out"][done] = host(b.time_out)[done]
+                outcome["vrx_score"][done] = host(b.final_score)[done]
                 if own_counts is not None:
                     counts = own_counts()
                     outcome["own_tacks"][done] = counts["tacks"][done]
@@ -104,4 +106,5 @@ def sail_mission(env: BatchedEnv, controller: Controller, *, progress: bool = Fa
     return ControllerResult(name=controller.name, paths=paths, success=outcome["success"], time_s=outcome["time_s"],
                             waypoints=outcome["waypoints"], status=outcome["status"], time_out=outcome["time_out"],
                             wind_direction=wind_direction, routes=routes,
-                            start_point=np.array(env.task.start_point, dtype=np.float64), obstacles=obstacles, **own)
+                            start_point=np.array(env.task.start_point, dtype=np.float64), obstacles=obstacles,
+                            vrx_score=outcome["vrx_score"], **own)
