@@ -3,7 +3,8 @@
 At the top: ``BatchedEnv`` and ``EnvBuffers`` (``protocol``: the face of a batch of environments that
 training, evaluation and the adapters use), ``SailingEnv`` (``sailing_env``: N boats, one task, one captured
 decision step with same-step resets; it implements the protocol, as ``parallel``'s ``ShardedSailingEnv``
-does) and the task ids (``registration``). By role, in subpackages (each ``__init__`` says what it holds):
+does), the task ids (``registration``) and their specs (``task_specs``: one per task). By role, in
+subpackages (each ``__init__`` says what it holds):
 
 - ``tasks``: ``WaypointConfig`` (the seed paper's), ``WaypointPlusConfig`` (ours), ``MissionConfig`` (the
   six-waypoint "BCDACA" mission), ``MissionSailConfig`` (the mission with the propeller off),
@@ -16,7 +17,8 @@ does) and the task ids (``registration``). By role, in subpackages (each ``__ini
   ``ocean_warp.envs.interfaces.sb3_env``).
 - ``parallel``: environments over CPU worker processes. ``controllers``: ``SailingAutopilot``, a classical
   sailing autopilot that runs any task in place of a policy. ``training``: PPO, checkpoints, the shipped
-  policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``.
+  policies. ``evaluation``: controllers sailing a task's runs, their results and files. ``apps``:
+  ``ocean-warp eval``, ``demo`` and ``export-usd``.
 """
 
 from .registration import TASK_IDS, make_task_config, register_envs

@@ -1,10 +1,11 @@
-"""Task ids: their configs, and their registration with gymnasium.
+"""Task ids: their configs, and their registration with gymnasium, read from the task specs
+(``task_specs.TASK_SPECS``: one per task).
 
 ``register_envs()`` registers ``ocean_warp/EBoatWaypoint-v0``, ``ocean_warp/EBoatWaypointPlus-v0``,
 ``ocean_warp/EBoatMission-v0``, ``ocean_warp/EBoatMissionSail-v0`` (the mission under sail alone: the
 propeller off, a0 ignored; the physics profile's boat), ``ocean_warp/EBoatAvoid-v0`` (a waypoint through
-buoys and piles, with a lidar) and ``ocean_warp/EBoatAvoidSail-v0`` (the same under sail alone), each with a single-boat ``entry_point``
-(``gymnasium.make``) and a batched ``vector_entry_point`` (``gymnasium.make_vec(...,
+buoys and piles, with a lidar) and ``ocean_warp/EBoatAvoidSail-v0`` (the same under sail alone), each with a
+single-boat ``entry_point`` (``gymnasium.make``) and a batched ``vector_entry_point`` (``gymnasium.make_vec(...,
 vectorization_mode="vector_entry_point")``).
 Nothing is registered with ``max_episode_steps``: the simulator times episodes out itself, so
 gymnasium adds no TimeLimit wrapper unless the caller asks for one.
@@ -17,26 +18,16 @@ from typing import Any
 
 import gymnasium as gym
 
+from . import task_specs
+from .task_specs import NAMESPACE, task_spec
+
 __all__ = ["NAMESPACE", "TASK_IDS", "DEFAULT_TASK", "task_name", "make_task_config", "register_envs"]
 
-NAMESPACE = "ocean_warp"
-"""Gymnasium namespace of the ids registered here."""
-
-TASK_IDS = ("EBoatWaypoint-v0", "EBoatWaypointPlus-v0", "EBoatMission-v0", "EBoatMissionSail-v0", "EBoatAvoid-v0",
-            "EBoatAvoidSail-v0")
-"""Task ids, without the namespace."""
+TASK_IDS = tuple(spec.id for spec in task_specs.TASK_SPECS)
+"""Task ids, without the namespace (``task_specs.TASK_SPECS``)."""
 
 DEFAULT_TASK = "EBoatMission-v0"
 """The task every ``ocean-warp`` job that takes ``--task`` sails without it: the BCDACA mission."""
-
-_CONFIG_CLASS_NAMES = {
-    "EBoatWaypoint-v0": "WaypointConfig",
-    "EBoatWaypointPlus-v0": "WaypointPlusConfig",
-    "EBoatMission-v0": "MissionConfig",
-    "EBoatMissionSail-v0": "MissionSailConfig",
-    "EBoatAvoid-v0": "AvoidConfig",
-    "EBoatAvoidSail-v0": "AvoidSailConfig",
-}
 
 
 def task_name(task_id: str) -> str:
@@ -45,19 +36,7 @@ def task_name(task_id: str) -> str:
     Raises:
         ValueError: not a registered task id (the message, one line, names the known ones).
     """
-    name = str(task_id).removeprefix(f"{NAMESPACE}/")
-    if name not in _CONFIG_CLASS_NAMES:
-        raise ValueError(f"unknown task id {task_id!r}; known: {', '.join(TASK_IDS)} "
-                         f"(optionally prefixed '{NAMESPACE}/')")
-    return name
-
-
-def _default_config(task_id: str) -> Any:
-    """The default config of a task id (with or without the namespace)."""
-    name = task_name(task_id)
-    from .tasks import task_configs as tasks  # deferred: tasks pull in the simulator, registration must stay light
-
-    return getattr(tasks, _CONFIG_CLASS_NAMES[name])()
+    return task_spec(task_id).id
 
 
 def make_task_config(task: Any, *, max_episode_steps: int | None = None, **overrides: Any) -> Any:
@@ -71,7 +50,7 @@ def make_task_config(task: Any, *, max_episode_steps: int | None = None, **overr
     Returns:
         the config (a new object when anything was replaced).
     """
-    config = _default_config(task) if isinstance(task, str) else task
+    config = task_spec(task).make_config() if isinstance(task, str) else task
     if max_episode_steps is not None:
         overrides = {**overrides, **_episode_steps_override(config, int(max_episode_steps))}
     return dataclasses.replace(config, **overrides) if overrides else config
@@ -85,8 +64,8 @@ def _episode_steps_override(config: Any, steps: int) -> dict[str, Any]:
 
 
 def register_envs() -> None:
-    """Register the task ids (``TASK_IDS``) with gymnasium; calling it again changes nothing."""
-    for name in TASK_IDS:
+    """Register every task (``task_specs.TASK_SPECS``) with gymnasium; calling it again changes nothing."""
+    for name in (spec.id for spec in task_specs.TASK_SPECS):
         env_id = f"{NAMESPACE}/{name}"
         if env_id in gym.registry:
             continue

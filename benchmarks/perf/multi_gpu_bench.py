@@ -61,7 +61,7 @@ def throughput(config: dict, rows: list[dict[str, float]], warmup: int) -> dict[
 
 def completed_runs(policy_path: str, runs: int, device: str) -> int:
     """BCDACA runs (of ``runs``) the policy completes, as ``ocean-warp eval --no-autopilot`` sails them."""
-    from ocean_warp.envs.apps.evaluation import evaluate_mission
+    from ocean_warp.envs.evaluation import evaluate_mission
 
     evaluation = evaluate_mission(policy_path, runs, device=device, autopilot=False, progress=False)
     return int(next(iter(evaluation.results.values())).success.sum())

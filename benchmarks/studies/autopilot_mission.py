@@ -9,7 +9,7 @@ reached within 5 m; true wind 10 m/s toward +x with gusts (1 m/s, 0.1 rad); a JO
 random streams. The autopilot (``ocean_warp.envs.controllers.sailing_autopilot``) takes the place of the policy: it writes
 the actions of every decision (1 s) from the environment's current waypoints. A run's first episode
 is its result: success, time, waypoints, tacks, and how it ended (capsize, lost, time-out). The runs are
-sailed by ``ocean_warp.envs.apps.evaluation`` (the runner of ``ocean-warp eval``, which also draws the paths and
+sailed by ``ocean_warp.envs.evaluation`` (the runner of ``ocean-warp eval``, which also draws the paths and
 compares a policy with the autopilot).
 """
 
@@ -26,14 +26,14 @@ import warp as wp
 
 
 from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig
-from ocean_warp.envs.apps.evaluation import evaluate_mission
+from ocean_warp.envs.evaluation import evaluate_mission
 from ocean_warp.fleet import BoatStatus
 
 
 def run_mission(runs: int = 20, *, device="cpu", seed: int = 0, sea_state: float = 0.3,
                 time_limit: float | None = None, autopilot: AutopilotConfig | None = None,
                 task=None) -> dict[str, np.ndarray]:
-    """Sail ``runs`` missions at once (``ocean_warp.envs.apps.evaluation``'s runner, the legacy autopilot only, its
+    """Sail ``runs`` missions at once (``ocean_warp.envs.evaluation``'s runner, the legacy autopilot only, its
     defaults where ``autopilot`` is None); per run:
     success, time [s], waypoints, the autopilot's own tack count, status bits at the end, time-out.
     ``task``: the mission config to start from (default ``MissionConfig()``)."""

@@ -24,7 +24,7 @@ import time
 import warp as wp
 
 from ocean_warp.atomic_files import atomic_output
-from ocean_warp.envs.apps.evaluation import evaluate_mission
+from ocean_warp.envs.evaluation import evaluate_mission
 from ocean_warp.envs.training.policies import shipped_policy_path
 
 COLUMNS = ("task", "controller", "wind_m_s", "sea_state_m", "runs", "completed", "time_mean_s", "capsizes", "lost",

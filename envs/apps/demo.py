@@ -35,7 +35,7 @@ from ocean_warp.cli_support import checked_output_folder, checked_device, plural
 from ..sailing_env import SailingEnv
 from .demo_options import DemoConfig, parser as _parser
 from .fleet_scenario import controller_observation, scenario_arguments, shipped_policy_or_none
-from .evaluation import (
+from ..evaluation import (
     DEFAULT_TASK,
     AutopilotController,
     FleetController,

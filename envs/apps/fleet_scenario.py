@@ -10,7 +10,7 @@ import warp as wp
 
 from ocean_warp.eboat import Hydrostatics
 
-from .evaluation import DEFAULT_TASK, evaluation_task
+from ..evaluation import DEFAULT_TASK, evaluation_task
 from .scenario_options import (HULLS, FleetScenario, add_sailing_arguments, add_scenario_arguments,
                                checked_task_name, scenario_arguments, shipped_policy_or_none)
 

@@ -52,7 +52,7 @@ from ocean_warp.kernels.camera_render import follow_boat
 
 from ..decision_hook import DecisionHook
 from ..sailing_env import SailingEnv
-from .evaluation import AutopilotController, FleetController, PolicyController, sail_mission, warn_other_task
+from ..evaluation import AutopilotController, FleetController, PolicyController, sail_mission, warn_other_task
 from .render_options import CAMERAS, VIDEO_SUFFIXES, RenderConfig, parser as _parser  # noqa: F401 (re-exported)
 from .fleet_scenario import checked_task_name, controller_observation, shipped_policy_or_none
 from ..training.policy_io import load_policy

@@ -7,7 +7,7 @@
 Counting only each environment's first episode (every environment starts fresh from a seeded reset)
 keeps the estimate unbiased: counting "the first N episodes to end" would favour short ones, i.e.
 quick successes and quick failures. The mission has its own, richer evaluation
-(:mod:`ocean_warp.envs.apps.evaluation`).
+(:mod:`ocean_warp.envs.evaluation`, ``ocean-warp eval``).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import torch
 
 from ..sailing_env import SailingEnv
 from ..training.policy_io import Policy
-from .evaluation import observation_mismatch
+from ..evaluation import observation_mismatch
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ from ocean_warp.usd.stage_file import check_stage_path
 from ..sailing_env import SailingEnv
 from .fleet_scenario import scenario_arguments, shipped_policy_or_none
 from .usd_export_options import ExportConfig, parser as _parser
-from .evaluation import AutopilotController, FixedController, PolicyController, RecordedDecision, warn_other_task
+from ..evaluation import AutopilotController, FixedController, PolicyController, RecordedDecision, warn_other_task
 from ..training.policies import shipped_policy_path
 from ..training.policy_io import CheckpointError, load_policy
 

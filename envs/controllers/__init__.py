@@ -1,7 +1,7 @@
 """Classical controllers that sail any task in place of a policy:
 
 - ``line_following``: ``LineFollower`` and ``LineFollowingConfig``, the line following of Jaulin and Le Bars
-  (2012), the default baseline of every task (``AutopilotController`` in ``ocean_warp.envs.apps.evaluation``);
+  (2012), the default baseline of every task (``AutopilotController`` in ``ocean_warp.envs.evaluation``);
   ``line_following_kernels``: its law as Warp functions and its kernel.
 - ``sailing_autopilot``: the legacy ``SailingAutopilot`` and ``AutopilotConfig`` (line-of-sight guidance, beats
   with tacks at the laylines, sheet trim, heading control; ``AutopilotConfig.sail_only()`` without the motor),

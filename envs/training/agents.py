@@ -16,6 +16,7 @@ from typing import Any
 from ocean_warp.validation import require_in_range, require_int_in_range, require_positive, require_range_pair
 
 from ..registration import make_task_config
+from ..task_specs import TASK_SPECS, task_spec
 from ..tasks.task_configs import (
     AvoidConfig,
     AvoidSailConfig,
@@ -27,7 +28,8 @@ from ..tasks.task_configs import (
 )
 
 __all__ = ["PpoConfig", "CurriculumConfig", "TrainConfig", "AGENT_CONFIGS", "agent_config", "mission_practice",
-           "TRAINING_REEF_RANDOM", "with_training_reef"]
+           "TRAINING_REEF_RANDOM", "with_training_reef", "waypoint_agent", "waypoint_plus_agent", "mission_agent",
+           "mission_sail_agent", "avoid_agent", "avoid_sail_agent"]
 
 TRAINING_REEF_RANDOM = 0.25
 """Probability per training episode that the reef level is drawn uniformly instead of by the task's rule
@@ -225,18 +227,22 @@ def mission_practice(base: MissionConfig | None = None, wind_speed: tuple[float,
                                                   start=start))
 
 
-def _waypoint() -> TrainConfig:
+def waypoint_agent() -> TrainConfig:
+    """EBoatWaypoint-v0's training: the task itself, 400 iterations."""
     return TrainConfig(task="EBoatWaypoint-v0", train_task=make_task_config("EBoatWaypoint-v0"),
                        num_envs_cpu=256, num_envs_cuda=4096, steps_per_env=24, iterations=400, save_interval=50)
 
 
-def _waypoint_plus() -> TrainConfig:
+def waypoint_plus_agent() -> TrainConfig:
+    """EBoatWaypointPlus-v0's training: the task with the training reef, 128-wide networks."""
     return TrainConfig(task="EBoatWaypointPlus-v0", train_task=with_training_reef(WaypointPlusConfig()),
                        num_envs_cpu=256, num_envs_cuda=4096, steps_per_env=24, iterations=400, save_interval=50,
                        ppo=PpoConfig(hidden_dims=(128, 128)))
 
 
-def _mission() -> TrainConfig:
+def mission_agent() -> TrainConfig:
+    """EBoatMission-v0's training: single legs (:func:`mission_practice`) in a sea that grows with
+    success."""
     return TrainConfig(task="EBoatMission-v0", train_task=mission_practice(), num_envs_cpu=256, num_envs_cuda=4096,
                        steps_per_env=32, iterations=250, save_interval=50,
                        curriculum=CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0.75))
@@ -251,35 +257,34 @@ SAIL_CURRICULUM = CurriculumConfig(sea_states=(0.1, 0.3, 0.5), promote_success=0
 and sea."""
 
 
-def _mission_sail() -> TrainConfig:
-    return dataclasses.replace(_mission(), task="EBoatMissionSail-v0", curriculum=SAIL_CURRICULUM,
+def mission_sail_agent() -> TrainConfig:
+    """EBoatMissionSail-v0's training: as the mission's, with the sail-only curriculum."""
+    return dataclasses.replace(mission_agent(), task="EBoatMissionSail-v0", curriculum=SAIL_CURRICULUM,
                                train_task=mission_practice(MissionSailConfig(), wind_speed=SAIL_PRACTICE_WIND))
 
 
-def _avoid() -> TrainConfig:
+def avoid_agent() -> TrainConfig:
+    """EBoatAvoid-v0's training: the task with the training reef, 128-wide networks."""
     return TrainConfig(task="EBoatAvoid-v0", train_task=with_training_reef(AvoidConfig()), num_envs_cpu=256,
                        num_envs_cuda=4096, steps_per_env=32, iterations=300, save_interval=50,
                        ppo=PpoConfig(hidden_dims=(128, 128)))
 
 
-def _avoid_sail() -> TrainConfig:
-    return dataclasses.replace(_avoid(), task="EBoatAvoidSail-v0", train_task=with_training_reef(AvoidSailConfig()))
+def avoid_sail_agent() -> TrainConfig:
+    """EBoatAvoidSail-v0's training: as the avoidance task's, under sail alone."""
+    return dataclasses.replace(avoid_agent(), task="EBoatAvoidSail-v0",
+                               train_task=with_training_reef(AvoidSailConfig()))
 
 
-AGENT_CONFIGS: dict[str, Callable[[], TrainConfig]] = {
-    "EBoatWaypoint-v0": _waypoint,
-    "EBoatWaypointPlus-v0": _waypoint_plus,
-    "EBoatMission-v0": _mission,
-    "EBoatMissionSail-v0": _mission_sail,
-    "EBoatAvoid-v0": _avoid,
-    "EBoatAvoidSail-v0": _avoid_sail,
-}
-"""The default training config of each task id."""
+AGENT_CONFIGS: dict[str, Callable[[], TrainConfig]] = {spec.id: spec.make_agent_config for spec in TASK_SPECS}
+"""The default training config of each task id (factories; ``task_specs.TASK_SPECS``)."""
 
 
 def agent_config(task: str) -> TrainConfig:
-    """The default :class:`TrainConfig` of a task id (with or without the "ocean_warp/" prefix)."""
-    name = task.removeprefix("ocean_warp/")
-    if name not in AGENT_CONFIGS:
-        raise ValueError(f"unknown task {task!r}; known: {', '.join(AGENT_CONFIGS)}")
-    return AGENT_CONFIGS[name]()
+    """The default :class:`TrainConfig` of a task id (with or without the "ocean_warp/" prefix): its spec's
+    (``task_specs.task_spec``).
+
+    Raises:
+        ValueError: an unknown task id (one line naming the known ones).
+    """
+    return task_spec(task).make_agent_config()

@@ -759,7 +759,7 @@ def test_each_boats_obstacles_in_the_stage(tmp_path):
 
     from ocean_warp.envs import SailingEnv
     from ocean_warp.envs.apps.demo_stage import MissionStageRecorder
-    from ocean_warp.envs.apps.evaluation import RecordedDecision
+    from ocean_warp.envs.evaluation import RecordedDecision
     from ocean_warp.envs.apps.fleet_scenario import fleet_course_task
     from ocean_warp.usd.paths import OBJECTS, ROUTE_PATH, WAYPOINTS
 

@@ -4,16 +4,12 @@ from __future__ import annotations
 
 import pathlib
 
+from ...task_specs import TASK_SPECS
+
 __all__ = ["SHIPPED_POLICIES", "shipped_policy_path"]
 
-SHIPPED_POLICIES = {
-    "EBoatAvoid-v0": "eboat_avoid.pt",
-    "EBoatMission-v0": "eboat_mission.pt",
-    "EBoatMissionSail-v0": "eboat_mission_sail.pt",
-    "EBoatWaypoint-v0": "eboat_waypoint.pt",
-    "EBoatWaypointPlus-v0": "eboat_waypoint_plus.pt",
-}
-"""Task id -> file name of its shipped policy, in this package's folder."""
+SHIPPED_POLICIES = {spec.id: spec.policy_file for spec in TASK_SPECS if spec.policy_file is not None}
+"""Task id -> file name of its shipped policy, in this package's folder (``task_specs.TASK_SPECS``)."""
 
 
 def shipped_policy_path(task_id: str) -> pathlib.Path:

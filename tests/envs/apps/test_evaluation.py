@@ -19,19 +19,18 @@ from ocean_warp import cli
 from ocean_warp.eboat import EBoatConfig, Hydrostatics
 from ocean_warp.envs import TASK_IDS, MissionConfig, SailingEnv
 from ocean_warp.envs.training import policies
-from ocean_warp.envs.apps.evaluation import (
+from ocean_warp.envs.apps.evaluation import _policy_for, main
+from ocean_warp.envs.evaluation import (
     AutopilotController,
     FleetController,
     PolicyController,
     RecordedDecision,
-    _policy_for,
     evaluate_mission,
     evaluation_task,
-    main,
     mission_task,
     sail_mission,
 )
-from ocean_warp.envs.apps.mission_metrics import (
+from ocean_warp.envs.evaluation.mission_metrics import (
     cross_track_profile,
     cross_track_spread,
     leg_indices,
@@ -46,7 +45,7 @@ from tests.env_buffers import assert_same_buffers
 DEG = math.pi / 180.0
 COLUMNS = ["controller", "runs", "completed", "completion_rate", "time_mean_s", "time_std_s", "time_min_s",
            "time_max_s", "distance_mean_m", "tacks_mean", "gybes_mean", "cross_track_spread_m", "capsizes",
-           "collisions", "lost", "time_outs", "motor_use"]
+           "collisions", "lost", "time_outs", "motor_use", "vrx_score"]
 
 
 def tiny_mission(**changes) -> MissionConfig:
@@ -210,6 +209,7 @@ def test_tiny_evaluation_files(tiny_evaluation):
         assert float(row["tacks_mean"]) >= 0.0 and float(row["gybes_mean"]) >= 0.0
         assert int(row["lost"]) == 0 and int(row["capsizes"]) + int(row["time_outs"]) == 2
         assert 0.0 <= float(row["motor_use"]) <= 1.0
+        assert row["vrx_score"] == ""  # an E-Boat task has no VRX score
     autopilot = rows[1]
     assert 10.0 < float(autopilot["distance_mean_m"]) < 20.0 * 5.0  # under way, slower than 5 m/s
     assert int(autopilot["time_outs"]) == 2
@@ -217,6 +217,7 @@ def test_tiny_evaluation_files(tiny_evaluation):
     assert len(runs) == 4 and [r["controller"] for r in runs] == ["policy"] * 2 + ["autopilot"] * 2
     assert all(float(r["time_s"]) <= 20.0 and float(r["distance_m"]) > 0.0 for r in runs)
     assert [r["own_tacks"] for r in runs[:2]] == ["", ""] and all(r["own_tacks"].isdigit() for r in runs[2:])
+    assert header[-1] == "vrx_score" and [r["vrx_score"] for r in runs] == [""] * 4
     arrays = np.load(paths["trajectories.npz"])
     assert list(arrays["controllers"]) == ["policy", "autopilot"]
     assert arrays["autopilot_x"].shape == (2, 21) and arrays["autopilot_propeller"].shape == (2, 20)
@@ -224,6 +225,23 @@ def test_tiny_evaluation_files(tiny_evaluation):
     # Printed table: a line per column, a column per controller.
     table = evaluation.format_table().splitlines()
     assert [line.split()[0] for line in table] == COLUMNS
+
+
+def test_fingerprint_reads_runs_csv_without_the_empty_score(tiny_evaluation):
+    """The behaviour fingerprint hashes runs.csv as it was before vrx_score (empty on an E-Boat task): the same
+    bytes as the file rewritten without its last column."""
+    import io
+
+    from benchmarks.studies.behaviour_fingerprint import _without_empty_score
+
+    _, paths = tiny_evaluation
+    with open(paths["runs.csv"], "rb") as handle:
+        data = handle.read()
+    rows = list(csv.reader(io.StringIO(data.decode(), newline="")))
+    assert rows[0][-1] == "vrx_score"
+    before = io.StringIO(newline="")
+    csv.writer(before).writerows(row[:-1] for row in rows)
+    assert _without_empty_score(data) == before.getvalue().encode()
 
 
 def test_tiny_evaluation_paths(tiny_evaluation):
@@ -305,6 +323,34 @@ def test_recorded_decision_frames_inside_the_decision(device):
     assert np.abs(np.diff(frames["rudder_angle"], axis=0)).max() > 0  # the rudder moves during the decision
     with pytest.raises(ValueError, match="frames_per_decision"):
         RecordedDecision(recorded, frames_per_decision=3)  # does not divide 20 steps
+
+
+def test_vrx_score_is_read_where_each_first_episode_ends(tmp_path):
+    """A task that scores its episodes (here a hook standing in for its kernel: after decision k it writes
+    100 k + run + 0.25 into ``env.buffers.final_score``, and NaN for run 2): each run's vrx_score is the value
+    at the decision where its first episode ended (the 4th of a 4 s mission at 1 s a decision, every run
+    timing out), the controller's is their mean, empty where one run has none."""
+    from ocean_warp.envs.evaluation import FixedController, MissionEvaluation
+
+    env = SailingEnv(tiny_mission(episode_time=4.0), 3, device="cpu", seed=0)
+
+    def score(k, decision):
+        env.buffers.final_score.copy_(torch.tensor([100.0 * k + 0.25, 100.0 * k + 1.25, math.nan]))
+
+    result = sail_mission(env, FixedController((0.0, 0.0, 0.0)), on_decision=score)
+    assert result.time_out.all() and list(result.time_s) == [4.0, 4.0, 4.0]
+    np.testing.assert_array_equal(result.vrx_score, [300.25, 301.25, np.nan])
+    assert result.summary()["vrx_score"] == ""
+    assert [row["vrx_score"] for row in result.run_rows()] == [300.25, 301.25, ""]
+    both = result.subset(np.array([True, True, False]), "scored")
+    assert both.summary()["vrx_score"] == (300.25 + 301.25) / 2
+    paths = MissionEvaluation(task=env.task, settings={"runs": 2, "seed": 0}, results={"scored": both}).write(tmp_path)
+    _, rows = read_csv(paths["results.csv"])
+    assert float(rows[0]["vrx_score"]) == 300.75
+    _, runs = read_csv(paths["runs.csv"])
+    assert [float(row["vrx_score"]) for row in runs] == [300.25, 301.25]
+    with pytest.raises(ValueError, match=r"vrx_score must be \(3,\)"):
+        dataclasses.replace(result, vrx_score=np.zeros(2))
 
 
 def test_fleet_controller_gives_each_run_its_controllers_actions(tmp_path):
@@ -530,8 +576,22 @@ def test_shipped_policy_path(monkeypatch):
         policies.shipped_policy_path("ocean_warp/EBoatMission-v0")
 
 
+def test_apps_do_not_import_the_eval_command():
+    """render, demo, export-usd, the fleet scenario and the success rate take what they sail from
+    ocean_warp.envs.evaluation; the eval command's module (its options and main) stays out of them."""
+    import subprocess
+    import sys
+
+    apps = ("render", "demo", "usd_export", "fleet_scenario", "success_rate")
+    code = ("import sys\n" + "".join(f"import ocean_warp.envs.apps.{name}\n" for name in apps)
+            + "print('ocean_warp.envs.apps.evaluation' in sys.modules, 'ocean_warp.envs.evaluation' in sys.modules)")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["False", "True"]
+
+
 def test_benchmark_uses_the_runner(monkeypatch):
-    """benchmarks/studies/autopilot_mission.py sails through ocean_warp.envs.apps.evaluation (no loop of its own)."""
+    """benchmarks/studies/autopilot_mission.py sails through ocean_warp.envs.evaluation (no loop of its own)."""
     from benchmarks.studies import autopilot_mission
 
     calls = []
@@ -694,7 +754,7 @@ def test_collisions_are_counted_against_a_run_that_hits_a_pile(tmp_path):
     BoatStatus.COLLIDED where its bow meets the pile, long before the time limit; run 1 does not. The
     collisions column counts 1, runs.csv ends run 0 "collided", and the files keep the layout the reset drew
     (the pile where the task puts it), equal to ``buffers.obstacles`` after a reset."""
-    from ocean_warp.envs.apps.evaluation import FixedController, MissionEvaluation
+    from ocean_warp.envs.evaluation import FixedController, MissionEvaluation
     from ocean_warp.fleet import BoatStatus
 
     task = tiny_avoid()

@@ -205,7 +205,7 @@ def _pile_ahead_task() -> AvoidConfig:
 
 def _sail_first_episodes(env, config):
     """Each run's first episode: (collided, reached) per run."""
-    from ocean_warp.envs.apps.evaluation import AutopilotController
+    from ocean_warp.envs.evaluation import AutopilotController
 
     env.reset(seed=3)
     controller = AutopilotController(config)

@@ -13,7 +13,7 @@ import pytest
 import warp as wp
 
 from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig
-from ocean_warp.envs.apps.evaluation import AutopilotController
+from ocean_warp.envs.evaluation import AutopilotController
 from ocean_warp.envs.apps.evaluation_options import parser as evaluation_parser
 from ocean_warp.envs.controllers.line_following import LineFollower, LineFollowingConfig
 from ocean_warp.envs.controllers.line_following_kernels import (LineFollowingParameters, desired_heading,

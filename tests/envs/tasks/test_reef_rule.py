@@ -148,7 +148,7 @@ def test_every_task_but_the_seeds_reefs_by_default_and_training_randomises():
 
 def test_eval_reef_option_fixes_the_level():
     from ocean_warp.envs.apps import evaluation_options
-    from ocean_warp.envs.apps.evaluation import evaluation_task
+    from ocean_warp.envs.evaluation import evaluation_task
 
     assert evaluation_options.parser().parse_args([]).reef == "auto"
     assert evaluation_options.parser().parse_args(["--reef", "2"]).reef == "2"

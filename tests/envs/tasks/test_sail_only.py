@@ -20,7 +20,7 @@ from gymnasium.utils.env_checker import check_env
 from ocean_warp.eboat import EBoatConfig, Hydrostatics, Profile
 from ocean_warp.envs import MissionConfig, SailingEnv, TaskConfig, make_task_config
 from ocean_warp.envs.controllers.sailing_autopilot import AutopilotConfig
-from ocean_warp.envs.apps.evaluation import MOTOR_ASSIST_LEVEL, AutopilotController
+from ocean_warp.envs.evaluation import MOTOR_ASSIST_LEVEL, AutopilotController
 from ocean_warp.envs.controllers.line_following import LineFollowingConfig
 from ocean_warp.envs.interfaces.gym_env import SailingEnvSingle
 from ocean_warp.envs.tasks.task_configs import BCDACA_ROUTE, MissionSailConfig

@@ -12,7 +12,7 @@ import pytest
 import torch
 
 from ocean_warp.envs import WaypointConfig
-from ocean_warp.envs.apps.evaluation import evaluate_mission
+from ocean_warp.envs.evaluation import evaluate_mission
 from ocean_warp.envs.training.policies import shipped_policy_path
 from ocean_warp.envs.training.policy_io import Policy, build_actor, load_policy, read_checkpoint
 from ocean_warp.envs.apps.success_rate import evaluate_task
