@@ -67,6 +67,7 @@ class TaskSpec:
 
 _CONFIGS = f"{__package__}.tasks.task_configs"
 _AGENTS = f"{__package__}.training.agents"
+_VRX = f"{__package__}.vrx.tasks"
 
 
 def _spec(task_id: str, config_class: str, agent: str, policy_file: str | None, description: str) -> TaskSpec:
@@ -88,6 +89,13 @@ TASK_SPECS: tuple[TaskSpec, ...] = (
           "a waypoint 100-200 m away through 6-12 buoys and piles, with a lidar"),
     _spec("EBoatAvoidSail-v0", "AvoidSailConfig", "avoid_sail_agent", None,
           "the avoidance task under sail alone (propeller off)"),
+    TaskSpec("WamvStationKeeping-v0", Deferred(_VRX, "station_keeping_task"),
+             Deferred(_AGENTS, "wamv_station_keeping_agent"), None,
+             "VRX's station keeping on the WAM-V: hold a goal pose for 60 s in wind, waves and current"),
+    TaskSpec("WamvWayfinding-v0", Deferred(_VRX, "wayfinding_task"), Deferred(_AGENTS, "wamv_wayfinding_agent"),
+             None, "VRX's wayfinding on the WAM-V: visit four goal poses in turn"),
+    TaskSpec("WamvFollowPath-v0", Deferred(_VRX, "follow_path_task"), Deferred(_AGENTS, "wamv_follow_path_agent"),
+             None, "VRX's follow-the-path on the WAM-V: pass four gates in order"),
 )
 """Every task, in the order the command line lists them."""
 

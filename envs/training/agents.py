@@ -16,6 +16,7 @@ from typing import Any
 from ocean_warp.validation import require_in_range, require_int_in_range, require_positive, require_range_pair
 
 from ..registration import make_task_config
+from ..vrx.task_config import VrxTaskConfig
 from ..task_specs import TASK_SPECS, task_spec
 from ..tasks.task_configs import (
     AvoidConfig,
@@ -177,8 +178,8 @@ class TrainConfig:
 
     task: str
     """The task id the policy is for (its observations and actions)."""
-    train_task: TaskConfig
-    """The config it is trained on (the task itself, or practice for it)."""
+    train_task: Any
+    """The config it is trained on (the task itself, or practice for it): a ``TaskConfig`` or a ``VrxTaskConfig``."""
     num_envs_cpu: int = 256
     """Environments when training on the CPU."""
     num_envs_cuda: int = 4096
@@ -196,8 +197,8 @@ class TrainConfig:
 
     def __post_init__(self):
         owner = "TrainConfig"
-        if not isinstance(self.train_task, TaskConfig):
-            raise ValueError(f"{owner}.train_task must be a TaskConfig, got {self.train_task!r}")
+        if not isinstance(self.train_task, (TaskConfig, VrxTaskConfig)):
+            raise ValueError(f"{owner}.train_task must be a TaskConfig or a VrxTaskConfig, got {self.train_task!r}")
         require_int_in_range(owner, "num_envs_cpu", self.num_envs_cpu, 1, 2**24)
         require_int_in_range(owner, "num_envs_cuda", self.num_envs_cuda, 1, 2**24)
         require_int_in_range(owner, "steps_per_env", self.steps_per_env, 1, 100_000)
@@ -225,6 +226,28 @@ def mission_practice(base: MissionConfig | None = None, wind_speed: tuple[float,
     simulator = dataclasses.replace(base.simulator, mass_variation=0.05)
     return with_training_reef(dataclasses.replace(base, simulator=simulator, route=None, episode_time=400.0,
                                                   start=start))
+
+
+def _wamv_agent(task_id: str) -> TrainConfig:
+    """A VRX task's training on the WAM-V: 0.5 s decisions, 32 a segment, 4096 envs on a GPU."""
+    return TrainConfig(task=task_id, train_task=make_task_config(task_id), num_envs_cpu=256, num_envs_cuda=4096,
+                       steps_per_env=32, iterations=300, save_interval=50,
+                       ppo=PpoConfig(hidden_dims=(64, 64), entropy_coef=0.002))
+
+
+def wamv_station_keeping_agent() -> TrainConfig:
+    """WamvStationKeeping-v0's training: the task itself."""
+    return _wamv_agent("WamvStationKeeping-v0")
+
+
+def wamv_wayfinding_agent() -> TrainConfig:
+    """WamvWayfinding-v0's training: the task itself."""
+    return _wamv_agent("WamvWayfinding-v0")
+
+
+def wamv_follow_path_agent() -> TrainConfig:
+    """WamvFollowPath-v0's training: the task itself."""
+    return _wamv_agent("WamvFollowPath-v0")
 
 
 def waypoint_agent() -> TrainConfig:
