@@ -54,6 +54,7 @@ from ocean_warp.atomic_files import atomic_output
 from ocean_warp.cli_support import (checked_output_folder, finite_above, option_problem, plural, report_error)
 from ocean_warp.devices import resolve_device
 from ocean_warp.termination import Terminated
+from ocean_warp.vessel import Vessel
 
 from .agents import TrainConfig, agent_config
 from ..env_factory import make_env
@@ -150,6 +151,10 @@ def _jsonable(value: Any) -> Any:
         return {str(k): _jsonable(v) for k, v in value.items()}
     if isinstance(value, float) and not math.isfinite(value):
         return str(value)
+    if isinstance(value, Vessel):
+        return {"vessel": value.name, "config": _jsonable(value.config)}
+    if isinstance(value, np.ndarray):
+        return value.tolist()
     return value
 
 
