@@ -16,7 +16,9 @@ does) and the task ids (``registration``). By role, in subpackages (each ``__ini
   ``ocean_warp.envs.interfaces.sb3_env``).
 - ``parallel``: environments over CPU worker processes. ``controllers``: ``SailingAutopilot``, a classical
   sailing autopilot that runs any task in place of a policy. ``training``: PPO, checkpoints, the shipped
-  policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``.
+  policies. ``apps``: ``ocean-warp eval``, ``demo`` and ``export-usd``. ``sensors``: the lidar and camera
+  hooks (``LidarHook``, ``CameraHook``) that scan inside every decision. ``ros``: ``ocean-warp ros``, the MCAP
+  log of an env and ``ocean-warp export-policy``.
 """
 
 from .registration import TASK_IDS, make_task_config, register_envs

@@ -40,6 +40,7 @@ from .tasks.task_kernels import (
 )
 from .decision_hook import DecisionHook, HookChain
 from .protocol import EnvBuffers, episode_log
+from .tasks.obstacle_course import ObstacleCourse
 from .tasks.task_configs import ObservationSet, TaskConfig
 
 __all__ = ["SailingEnv", "DecisionHook", "environment_origins"]
@@ -146,8 +147,6 @@ class SailingEnv:
         """The :class:`~ocean_warp.envs.tasks.obstacle_course.ObstacleCourse` (layouts, contact, lidar) of a
         task with ``obstacles`` or a ``lidar``; None otherwise."""
         if task.obstacles is not None or task.lidar is not None or task.contact is not None:
-            from .tasks.obstacle_course import ObstacleCourse  # deferred: it imports the sensors, which import this
-
             self.obstacles = ObstacleCourse(self, self.clearance, lidar_column)
 
         self._course = struct_from(Course, self)

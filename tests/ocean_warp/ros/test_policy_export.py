@@ -1,4 +1,4 @@
-"""Policies for the boat (ocean_warp.ros.policy_export, onnx_policy): ONNX run by onnxruntime and TorchScript run
+"""Policies for the boat (ocean_warp.envs.ros.policy_export, onnx_policy): ONNX run by onnxruntime and TorchScript run
 by torch.jit.load reproduce every shipped policy's actions to 1e-5, normalisation inside the graph; the metadata
 comes back; ``ocean-warp export-policy`` writes the file or fails in one line; the runner needs neither torch
 nor Warp."""
@@ -14,13 +14,14 @@ import pytest
 import torch
 
 from ocean_warp import cli
+from ocean_warp.envs.ros import policy_export
+from ocean_warp.envs.ros.policy_export import (ActionDifference, ExportError, export_onnx, export_torchscript,
+                                               policy_metadata, read_torchscript_metadata)
 from ocean_warp.envs.tasks.task_kernels import POLICY_OBS
 from ocean_warp.envs.training.policies import SHIPPED_POLICIES, shipped_policy_path
 from ocean_warp.envs.training.policy_io import CHECKPOINT_FORMAT, load_policy
-from ocean_warp.ros import onnx_policy, policy_export
+from ocean_warp.ros import onnx_policy
 from ocean_warp.ros.onnx_policy import EXPORT_FORMAT, OnnxPolicy
-from ocean_warp.ros.policy_export import (ActionDifference, ExportError, export_onnx, export_torchscript,
-                                          policy_metadata, read_torchscript_metadata)
 
 pytestmark = pytest.mark.filterwarnings("ignore:`torch.jit.load` is deprecated:DeprecationWarning")
 HAS_ONNX = all(importlib.util.find_spec(name) is not None for name in ("onnx", "onnxruntime"))

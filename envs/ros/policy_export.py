@@ -46,7 +46,7 @@ from ocean_warp.envs.training.policy_io import (CHECKPOINT_FORMAT, CheckpointErr
                                                load_policy)
 
 from .policy_export_options import OUT_FOLDER, parser as _parser
-from .onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
+from ocean_warp.ros.onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
 
 __all__ = ["FORMATS", "OPSET", "TOLERANCE", "TORCHSCRIPT_METADATA", "ExportError", "ActionDifference",
            "ExportSummary", "check_observations", "policy_metadata", "observation_layout", "action_meaning",
