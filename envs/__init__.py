@@ -18,7 +18,9 @@ subpackages (each ``__init__`` says what it holds):
 - ``parallel``: environments over CPU worker processes. ``controllers``: ``SailingAutopilot``, a classical
   sailing autopilot that runs any task in place of a policy. ``training``: PPO, checkpoints, the shipped
   policies. ``evaluation``: controllers sailing a task's runs, their results and files. ``apps``:
-  ``ocean-warp eval``, ``demo`` and ``export-usd``.
+  ``ocean-warp eval``, ``demo`` and ``export-usd``. ``sensors``: the lidar and camera hooks (``LidarHook``,
+  ``CameraHook``) that scan inside every decision. ``ros``: ``ocean-warp ros``, the MCAP log of an env and
+  ``ocean-warp export-policy``. ``vrx``: VRX's tasks on any vessel.
 """
 
 from .registration import TASK_IDS, make_task_config, register_envs

@@ -38,6 +38,7 @@ from .tasks.task_kernels import (
 )
 from .decision_hook import DecisionHook
 from .protocol import EnvBuffers
+from .tasks.obstacle_course import ObstacleCourse
 from .vessel_env import BatchedVesselEnv
 from .tasks.task_configs import ObservationSet, TaskConfig
 
@@ -147,8 +148,6 @@ class SailingEnv(BatchedVesselEnv):
         """The :class:`~ocean_warp.envs.tasks.obstacle_course.ObstacleCourse` (layouts, contact, lidar) of a
         task with ``obstacles`` or a ``lidar``; None otherwise."""
         if task.obstacles is not None or task.lidar is not None or task.contact is not None:
-            from .tasks.obstacle_course import ObstacleCourse  # deferred: it imports the sensors, which import this
-
             self.obstacles = ObstacleCourse(self, self.clearance, lidar_column)
 
         self._course = struct_from(Course, self)

@@ -173,15 +173,19 @@ def _logical_lines(code: str):
         pending, first = "", None
 
 
+TORCHRUN_MODULE = "ocean_warp.envs.training.train"
+"""The module torchrun starts once per rank (``ocean-warp train`` as a module)."""
+
+
 def ocean_warp_commands(code: str, block_line: int = 0) -> list[Command]:
-    """The ``ocean-warp`` (and ``python -m ocean_warp.train``) commands of a bash text, with the options
-    each gives its job."""
+    """The ``ocean-warp`` (and ``python -m ocean_warp.envs.training.train``) commands of a bash text, with the
+    options each gives its job."""
     commands = []
     for number, words in _segments(code):
         if words[0] == "ocean-warp":
             rest = words[1:]
             job = "" if not rest or rest[0].startswith("-") else rest.pop(0)
-        elif "-m" in words and "ocean_warp.train" in words[words.index("-m") + 1:words.index("-m") + 2]:
+        elif "-m" in words and TORCHRUN_MODULE in words[words.index("-m") + 1:words.index("-m") + 2]:
             job, rest = "train", words[words.index("-m") + 2:]
         else:
             continue
@@ -193,7 +197,7 @@ def ocean_warp_commands(code: str, block_line: int = 0) -> list[Command]:
 def test_command_parsing_on_a_known_text():
     text = ("python3 -m venv .venv && . .venv/bin/activate && ocean-warp demo\n"
             "ocean-warp train --task X --set a=b   # --not-an-option\n"
-            "torchrun --nnodes=2 \\\n    -m ocean_warp.train --device=cuda --minutes 10\n"
+            "torchrun --nnodes=2 \\\n    -m ocean_warp.envs.training.train --device=cuda --minutes 10\n"
             "roscore &\nocean-warp --version\n")
     assert ocean_warp_commands(text, 10) == [Command("demo", (), 11), Command("train", ("--task", "--set"), 12),
                                              Command("train", ("--device", "--minutes"), 13),

@@ -40,7 +40,8 @@ from ocean_warp.envs.apps.render import (
     fleet_controller,
     route_buoys,
 )
-from ocean_warp.perception import CameraConfig, CameraHook, Scene, SceneObject, ViewCamera
+from ocean_warp.envs.sensors import CameraHook
+from ocean_warp.perception import CameraConfig, Scene, SceneObject, ViewCamera
 
 ENV_OBJECTS = (SceneObject.buoy((30.0, 5.0)), SceneObject.pillar((60.0, -10.0)))
 """What every environment holds besides its boat and the sea (placed from its origin)."""

@@ -34,7 +34,8 @@ import warp as wp
 from benchmarks.perf.bench_envs import seconds_per_call
 from benchmarks.perf.timing import device_description, write_results_json
 from ocean_warp.envs import SailingEnv, WaypointPlusConfig
-from ocean_warp.perception import LidarConfig, LidarHook, SceneObject
+from ocean_warp.envs.sensors import LidarHook
+from ocean_warp.perception import LidarConfig, SceneObject
 from ocean_warp.replay import ReplayedLaunches
 
 OBJECTS = (SceneObject.buoy((15.0, 5.0)), SceneObject.buoy((-10.0, 12.0)), SceneObject.pillar((20.0, -8.0)),

@@ -57,7 +57,7 @@ def train_command(*args: str) -> list[str]:
 
 def torchrun_command(ranks: int, *args: str) -> list[str]:
     return [sys.executable, "-m", "torch.distributed.run", "--standalone", f"--nproc_per_node={ranks}",
-            "-m", "ocean_warp.train", *TINY, *args]
+            "-m", "ocean_warp.envs.training.train", *TINY, *args]
 
 
 def last_checkpoint(run_dir: str) -> str:

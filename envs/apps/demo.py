@@ -82,7 +82,7 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
     object with ``record(time_s, frames)``, ``abort()`` and ``close() -> dict[str, str]`` (files written).
     ``record``: also write a rosbag2 MCAP log there (a path ending in .mcap; the ``mcap`` extra), every boat
     under ``/eboat_<i>`` (``/eboat`` for one boat) at the start and after every decision
-    (``ocean_warp.ros.mcap_log``); its path is ``files["rosbag"]``. ``policy``: the policy the policy's
+    (``ocean_warp.envs.ros.mcap_log``); its path is ``files["rosbag"]``. ``policy``: the policy the policy's
     share sails, loaded already (None: ``config.policy``'s file, else the task's shipped policy).
     """
     out = os.fspath(out)
@@ -108,7 +108,7 @@ def run_demo(config: DemoConfig, *, device: str = "cpu", out: str | os.PathLike 
         recorder = recorder_factory(env, os.path.join(out, "eboat_fleet.usdc"), frames_per_decision=frames)
     log = None
     if record is not None:
-        from ocean_warp.ros.mcap_log import McapRecorder
+        from ocean_warp.envs.ros.mcap_log import McapRecorder
 
         try:
             log = McapRecorder(record)
@@ -185,7 +185,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     if args.record is not None:
-        from ocean_warp.ros.mcap_log import check_record_path
+        from ocean_warp.envs.ros.mcap_log import check_record_path
 
         try:
             check_record_path(args.record)

@@ -128,7 +128,7 @@ def _check_options(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
     if args.no_policy and args.policy is not None:
         fail(parser, "--policy and --no-policy contradict each other")
     if args.record is not None:
-        from ocean_warp.ros.mcap_log import check_record_path
+        from ocean_warp.envs.ros.mcap_log import check_record_path
 
         try:
             check_record_path(args.record)

@@ -50,7 +50,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
         record: a rosbag2 MCAP log to write (a path ending in .mcap; the ``mcap`` extra): every controller's
             runs, each under its own namespace (``/<controller>/eboat_<run>``, ``/<controller>/eboat`` for
             one run), from their start to the end of the controller's last decision, once per decision
-            (``ocean_warp.ros.mcap_log``; None: no log).
+            (``ocean_warp.envs.ros.mcap_log``; None: no log).
         reef: one reef level for every run (``evaluation_task``); None: the task's rule.
 
     Raises:
@@ -83,7 +83,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     env = SailingEnv(config, int(runs), device=device, seed=seed)
     log = None
     if record is not None:
-        from ocean_warp.ros.mcap_log import McapRecorder
+        from ..ros.mcap_log import McapRecorder
 
         log = McapRecorder(record)
     try:

@@ -6,6 +6,8 @@
   starts, rewards and observation sets. Re-exported here.
 - ``task_kernels``: the Warp kernels of a decision's task side: actions to commands, observations, rewards,
   terminations and the masked resets.
+- ``observation_blocks``: the name and the scale and unit of every value of a task's policy observation
+  (``policy_layout(task)``), which the exported policies carry.
 - ``obstacle_layout`` (``ObstacleLayoutConfig``), ``obstacle_kernels`` and ``obstacle_course``
   (``ObstacleCourse``): the obstacles drawn at every reset, the contact, the lidar and the proximity gap of a
   task with ``obstacles`` or a ``lidar``.

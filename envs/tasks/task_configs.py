@@ -59,7 +59,7 @@ def mission_waypoint_name(point, tolerance: float = 1e-3) -> str | None:
 
 
 class ObservationSet(str, enum.Enum):
-    """What the policy sees."""
+    """What the policy sees (``observation_blocks`` names every column with its scale and unit)."""
 
     SEED = "seed"
     """The seed paper's 5 values from exact state, each scaled to [-1, 1] and clipped: 2 d / d_lost - 1;

@@ -32,7 +32,7 @@ PRIVILEGED_OBS = 12
 """Values the critic sees beyond the policy's observation."""
 POLICY_OBS = {"seed": 5, "plus": 15}
 """Values of each observation set; a task appends its reef level and its lidar's sectors
-(:func:`policy_observation_count`)."""
+(:func:`policy_observation_count`). ``observation_blocks`` names every column (its tests hold it to these)."""
 
 
 @wp.struct
@@ -354,7 +354,7 @@ def observe(
     critic: wp.array2d(dtype=float),
 ):
     """The policy's observation (the task's set, then its reef level, level / (levels - 1) in [0, 1], on a task
-    with a reef rule) and the critic's: the policy's followed by privileged truth (distance, bearing,
+    with a reef rule; ``observation_blocks`` names each column) and the critic's: the policy's followed by privileged truth (distance, bearing,
     velocities, attitude, true wind, progress along the route). A lidar's sectors come after each
     (``ObstacleCourse.append_observation``)."""
     env = wp.tid()

@@ -1,7 +1,7 @@
 """Training one policy in several processes (ranks) with torch.distributed, the way torchrun starts them.
 
-    torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --device cuda ...   # 2 GPUs
-    torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --device cpu ...    # 2 CPU processes
+    torchrun --standalone --nproc_per_node=2 -m ocean_warp.envs.training.train --device cuda ...   # 2 GPUs
+    torchrun --standalone --nproc_per_node=2 -m ocean_warp.envs.training.train --device cpu ...    # 2 CPU processes
 
 torchrun tells each process who it is through the environment: ``RANK`` (0 .. W-1 over every host),
 ``LOCAL_RANK`` (its index on this host, which picks its GPU: ``cuda:LOCAL_RANK``) and ``WORLD_SIZE`` (W).

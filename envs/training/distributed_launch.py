@@ -42,8 +42,8 @@ def gpus_problem(gpus: str, device: str | None, visible: int, environ: Mapping[s
         if device.startswith("cuda"):
             return f"--gpus gives each rank a GPU of its own: use --device cuda (or leave --device out), not {device}"
         return (f"--gpus trains on GPUs: use --device cuda (or leave --device out), not {device}; for several CPU "
-                "processes start torchrun yourself: torchrun --standalone --nproc_per_node=N -m ocean_warp.train "
-                "--device cpu ...")
+                "processes start torchrun yourself: torchrun --standalone --nproc_per_node=N "
+                "-m ocean_warp.envs.training.train --device cpu ...")
     if count > visible:
         return f"--gpus {count}: only {visible} GPU(s) visible to torch here (CUDA_VISIBLE_DEVICES, drivers?)"
     return None
@@ -51,7 +51,7 @@ def gpus_problem(gpus: str, device: str | None, visible: int, environ: Mapping[s
 
 def torchrun_command(argv: list[str], gpus: int, executable: str | None = None) -> list[str]:
     """The command that trains ``argv`` (``ocean-warp train``'s arguments) on ``gpus`` GPUs of this host:
-    ``python -m torch.distributed.run --standalone --nproc_per_node=G -m ocean_warp.train <argv without
+    ``python -m torch.distributed.run --standalone --nproc_per_node=G -m ocean_warp.envs.training.train <argv without
     --gpus>``, with ``--device cuda`` added where ``argv`` names no device."""
     rest, skip = [], False
     for token in argv:
@@ -66,7 +66,7 @@ def torchrun_command(argv: list[str], gpus: int, executable: str | None = None) 
     if not any(t.split("=", 1)[0] in ("--device", "--dev", "--devi", "--devic") for t in rest):
         rest += ["--device", "cuda"]
     return [executable or sys.executable, "-m", "torch.distributed.run", "--standalone", f"--nproc_per_node={int(gpus)}",
-            "-m", "ocean_warp.train", *rest]
+            "-m", "ocean_warp.envs.training.train", *rest]
 
 
 def describe_failure(output: str, status: int, gpus: int) -> str:

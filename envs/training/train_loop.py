@@ -6,7 +6,7 @@ checkpoints that resume bit for bit, a sea-state curriculum, and the exported po
     ocean-warp train --task EBoatMission-v0 --device cuda --iterations 250 --run-name h100
     ocean-warp train --task EBoatMission-v0 --resume out/train/EBoatMission-v0/<date>_<name>/model_99.pt
     ocean-warp train --task EBoatMission-v0 --gpus 2 --minutes 5          # 2 GPUs, 4096 envs on each
-    torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --device cpu ...   # 2 CPU processes
+    torchrun --standalone --nproc_per_node=2 -m ocean_warp.envs.training.train --device cpu ...   # 2 CPU processes
 
 A run writes into ``out/train/<task>/<date>_<name>/`` (``--runs-root``, default ``out/train``):
 ``config.json`` (the resolved config), rsl-rl's TensorBoard events, ``progress.csv`` (one row per iteration,

@@ -4,11 +4,12 @@ frames, the depth and the shading are defined).
 
 Example::
 
-    env = SailingEnv(WaypointPlusConfig(), 4096, device="cuda:0")
-    hook = CameraHook(env, CameraConfig(width=64, height=64, rgb=False, rate=2.0), objects=[SceneObject.buoy((30, 5))])
-    env.attach(hook)                       # renders at 2 Hz inside every decision, in its graph
-    env.step(actions)
-    hook.camera.depth                      # torch (4096, 64, 64) float32 [m], the latest capture
+    camera = Camera(CameraConfig(width=64, height=64, rgb=False), scene)   # one on every boat of the scene
+    scene.refresh()                        # after the sea moved
+    camera.capture()
+    camera.depth                           # torch (N, 64, 64) float32 [m]
+
+A camera that captures inside every decision of an environment: ``ocean_warp.envs.sensors.CameraHook``.
 
 A camera is mounted in its boat's body frame (x forward, y left, z up): its *link* frame (the same axes:
 x the viewing direction) sits at ``CameraConfig.mount`` [m], turned by ``mount_rpy`` (roll, pitch, yaw
@@ -22,21 +23,16 @@ from __future__ import annotations
 import dataclasses
 import math
 from numbers import Integral
-from typing import TYPE_CHECKING
 
 import numpy as np
 import warp as wp
 
-from ..envs.decision_hook import DecisionHook
 from ..frames import quaternion_from_roll_pitch_yaw
-from ..kernels.camera_render import CameraLens, count_decisions, look_at_poses, mounted_camera_poses, render_cameras
+from ..kernels.camera_render import CameraLens, look_at_poses, mounted_camera_poses, render_cameras
 from ..validation import require_finite, require_in_range, require_int_in_range, require_non_negative, require_positive
 from .scene import Scene
 
-__all__ = ["CameraConfig", "Camera", "CameraHook", "ViewCamera", "render_view"]
-
-if TYPE_CHECKING:
-    from ..envs.sailing_env import SailingEnv
+__all__ = ["CameraConfig", "Camera", "ViewCamera", "render_view"]
 
 MAX_PIXELS_A_SIDE = 8192
 
@@ -56,8 +52,9 @@ class CameraConfig:
     max_range: float = 200.0
     """Depth beyond which nothing is seen [m] (+inf in the depth image)."""
     rate: float = 2.0
-    """Captures per second of simulated time [Hz] under a :class:`CameraHook`; the physics rate divided by it
-    must be a whole number of steps that divides a decision's steps or is a multiple of them."""
+    """Captures per second of simulated time [Hz] under a ``CameraHook`` (``ocean_warp.envs.sensors``); the
+    physics rate divided by it must be a whole number of steps that divides a decision's steps or is a multiple
+    of them."""
     mount: tuple[float, float, float] = (1.2, 0.0, 0.6)
     """Position of the camera's link frame in the boat's body frame [m] (x forward, y left, z up)."""
     mount_rpy: tuple[float, float, float] = (0.0, math.radians(10.0), 0.0)
@@ -160,7 +157,7 @@ class _CameraBatch:
         self.orientation = wp.zeros(n, dtype=wp.quat, device=device)
         """(N,) link frame (x forward, y left, z up) -> world."""
         self.gate = wp.zeros(1, dtype=int, device=device)
-        """(1,) the render writes only while this holds 0 (:class:`CameraHook` counts decisions in it)."""
+        """(1,) the render writes only while this holds 0 (``CameraHook`` counts decisions in it)."""
         self.depth_array = wp.zeros(shape, dtype=float, device=device) if config.depth else None
         """(N, H, W) float32 depth [m] along the optical axis (+inf: nothing, -inf: too near); None when off."""
         self.rgb_array = wp.zeros(shape + (3,), dtype=wp.uint8, device=device) if config.rgb else None
@@ -192,7 +189,7 @@ class Camera(_CameraBatch):
 
     :meth:`capture` renders into :attr:`depth_array` (N, H, W) and :attr:`rgb_array` (N, H, W, 3), which
     torch reads through :attr:`depth` and :attr:`rgb` (views bound here). It reads the scene as it is:
-    ``scene.refresh()`` first after the sea moved (:class:`CameraHook` does both).
+    ``scene.refresh()`` first after the sea moved (``ocean_warp.envs.sensors.CameraHook`` does both).
     """
 
     def __init__(self, config: CameraConfig, scene: Scene, boats=None):
@@ -222,105 +219,6 @@ class Camera(_CameraBatch):
                   inputs=[view.boat_position, view.boat_orientation, self.boats, self._mount_position,
                           self._mount_orientation], outputs=[self.position, self.orientation])
         self._launch_render()
-
-
-class CameraHook(DecisionHook):
-    """A camera on every boat of a :class:`~ocean_warp.envs.SailingEnv` (boat i in environment i, blind to its
-    own boat), capturing at its config's rate inside every decision: after each capturing physics step the
-    scene is refreshed (the sea's band, the floating objects) and every camera renders. Launches only: the
-    captures are part of the decision's graph. Attach it with ``env.attach(hook)``; read ``hook.camera``.
-
-    The physics rate (1 / dt) divided by ``CameraConfig.rate`` must be a whole number K of steps, and K must
-    divide the decision's steps (captures after steps K, 2K, ... of every decision; the images hold the
-    last one) or be a multiple of them (a capture after the last step of every K / steps-th decision, the
-    first decision included); otherwise ``ValueError`` naming ``CameraConfig.rate``. The images are those
-    of the decision's physics, before the environments that ended restart (like ``env.final_position``).
-
-    Args:
-        env: the environment whose boats carry the cameras.
-        config: the camera (default ``CameraConfig()``).
-        objects: the objects of every environment, placed from each environment's origin (as
-            ``Scene.for_env``); ignored when ``scene`` is given.
-        scene: a scene of this environment's boats and sea to render instead.
-        record: also keep every capture of the decision, not only the last: ``recorded_depth`` (K N, H, W)
-            and ``recorded_rgb`` (K N, H, W, 3) for its K captures, oldest first (capture k of camera c in
-            row k N + c), preallocated on the device (see :meth:`frames`).
-    """
-
-    def __init__(self, env: SailingEnv, config: CameraConfig | None = None, *, objects=(), scene: Scene | None = None,
-                 record: bool = False):
-        from ..envs.sailing_env import SailingEnv  # deferred: the environment imports the sensors' configs
-
-        if not isinstance(env, SailingEnv):
-            raise ValueError(f"CameraHook: env must be a SailingEnv (it captures inside its decisions), got {env!r}")
-        config = config if config is not None else CameraConfig()
-        if not isinstance(config, CameraConfig):
-            raise ValueError(f"CameraHook: config must be a CameraConfig, got {config!r}")
-        steps = env.steps_per_decision
-        self.steps_between_captures = _steps_between_captures(config.rate, env.task.simulator.dt, steps)
-        """Physics steps from one capture to the next."""
-        self.scene = scene if scene is not None else Scene.for_env(env, objects)
-        if not isinstance(self.scene, Scene) or self.scene.ocean is not env.simulator.ocean \
-                or self.scene.view.boat_position.shape[0] != env.num_envs:
-            raise ValueError(f"CameraHook.scene must be a Scene of the environment's sea and its {env.num_envs} boats "
-                             "(Scene.for_env)")
-        self.camera = Camera(config, self.scene, np.arange(env.num_envs))
-        every = self.steps_between_captures
-        self.capture_steps = frozenset(range(every - 1, steps, every)) if steps % every == 0 else frozenset({steps - 1})
-        """The physics steps of a decision after which it captures (0-based)."""
-        self.decisions_between_captures = max(every // steps, 1)
-        """1, or the decisions from one capture to the next when the rate is below the decision rate."""
-        if not isinstance(record, bool):
-            raise ValueError(f"CameraHook.record must be True or False, got {record!r}")
-        self.record = record
-        self._slot_of_step = {step: slot for slot, step in enumerate(sorted(self.capture_steps))}
-        captures, camera = len(self.capture_steps), self.camera
-        recorded = (lambda image: None if image is None or not record  # noqa: E731
-                    else wp.zeros((captures * image.shape[0],) + image.shape[1:], dtype=image.dtype, device=env.device))
-        self.recorded_depth = recorded(camera.depth_array)
-        """(K N, H, W) the decision's depth images, with ``record`` and depth on (else None)."""
-        self.recorded_rgb = recorded(camera.rgb_array)
-        """(K N, H, W, 3) the decision's RGB images, with ``record`` and RGB on (else None)."""
-
-    def after_physics_step(self, env: SailingEnv, step: int) -> None:
-        """After a capturing step: refresh the scene and render (and count the decision when skipping some)."""
-        if step not in self.capture_steps:
-            return
-        camera = self.camera
-        self.scene.refresh()
-        camera.capture()
-        if self.decisions_between_captures > 1:
-            wp.launch(count_decisions, dim=1, device=camera.device,
-                      inputs=[camera.gate, self.decisions_between_captures])
-        slot = self._slot_of_step[step]
-        for recorded, image in ((self.recorded_depth, camera.depth_array), (self.recorded_rgb, camera.rgb_array)):
-            if recorded is not None:
-                wp.copy(recorded, image, dest_offset=slot * image.size, count=image.size)
-
-    def frames(self) -> dict[str, np.ndarray]:
-        """The last decision's captures on the host (``record`` only): "depth" (K, N, H, W) [m] and "rgb"
-        (K, N, H, W, 3) uint8 where the camera renders them; capture k taken after physics step
-        ``sorted(capture_steps)[k]`` (0-based) of the decision."""
-        if not self.record:
-            raise ValueError("CameraHook.frames: build the hook with record=True to keep every capture")
-        captures, cameras = len(self.capture_steps), self.camera.count
-        return {name: array.numpy().reshape((captures, cameras) + array.shape[1:])
-                for name, array in (("depth", self.recorded_depth), ("rgb", self.recorded_rgb)) if array is not None}
-
-
-def _steps_between_captures(rate: float, dt: float, steps_per_decision: int) -> int:
-    """Physics steps per capture at ``rate`` [Hz] with steps of ``dt`` [s]; ValueError naming
-    CameraConfig.rate unless it fits the decision's steps (see :class:`CameraHook`)."""
-    physics_rate = 1.0 / dt
-    ratio = physics_rate / rate
-    steps = int(round(ratio))
-    if steps < 1 or abs(ratio - steps) > 1e-6 * ratio:
-        raise ValueError(f"CameraConfig.rate must be the physics rate {physics_rate:g} Hz divided by a whole number "
-                         f"of steps, got {rate!r} Hz")
-    if steps_per_decision % steps and steps % steps_per_decision:
-        raise ValueError(f"CameraConfig.rate {rate!r} Hz captures every {steps} physics steps, which neither divides "
-                         f"nor is a multiple of the decision's {steps_per_decision} steps")
-    return steps
 
 
 class ViewCamera(_CameraBatch):

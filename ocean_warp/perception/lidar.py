@@ -2,27 +2,27 @@
 a multi-channel 3D one), ranges and what each beam hit, noise and dropouts, batched on the device
 (kernels in ``ocean_warp.kernels.lidar``).
 
-Example (a scan every 0.1 s inside every decision of a :class:`~ocean_warp.envs.SailingEnv`)::
+Example::
 
-    hook = LidarHook(env, LidarConfig.scan_2d(), objects=[SceneObject.buoy((30.0, 5.0))], sectors=36)
-    env.attach(hook)
-    env.step(actions)
-    hook.lidar.ranges          # (N, 360) torch view [m], the decision's last scan
-    hook.lidar.kinds           # (N, 360) ray_cast.HIT_* of each beam
-    hook.observation           # (N, 36) nearest range per 10 deg sector / max_range, in [0, 1]
+    lidar = Lidar(LidarConfig.scan_2d(), scene)   # one on every boat of the scene
+    scene.refresh()            # after the sea moved
+    lidar.scan()
+    lidar.ranges               # (N, 360) torch view [m]
+    lidar.kinds                # (N, 360) ray_cast.HIT_* of each beam
+    lidar.downsampled(36)      # (N, 36) nearest range per 10 deg sector / max_range, in [0, 1]
+
+A lidar that scans inside every decision of an environment: ``ocean_warp.envs.sensors.LidarHook``.
 
 How the beams are spread: ``ocean_warp.perception.lidar_config``.
 """
 
 from __future__ import annotations
-from typing import TYPE_CHECKING
 
 import numpy as np
 import torch
 import warp as wp
 
 from ..device_structs import struct_from
-from ..envs.decision_hook import DecisionHook
 from ..frames import quaternion_from_roll_pitch_yaw
 from ..kernels.lidar import LidarModel, hit_points, scan_lidar, sector_minimum
 from ..kernels.random_streams import advance_counter
@@ -31,10 +31,7 @@ from ..validation import require_int_in_range
 from .lidar_config import BOW_MOUNT, MASTHEAD_MOUNT, LidarConfig
 from .scene import Scene
 
-__all__ = ["BOW_MOUNT", "MASTHEAD_MOUNT", "LidarConfig", "Lidar", "LidarHook"]
-
-if TYPE_CHECKING:
-    from ..envs.sailing_env import SailingEnv
+__all__ = ["BOW_MOUNT", "MASTHEAD_MOUNT", "LidarConfig", "Lidar"]
 
 _MAX_STREAM_INDEX = 2**31 - 1
 """Beams are numbered (first boat + boat) x beams + beam in the random stream, a 32-bit signed offset."""
@@ -48,7 +45,7 @@ class Lidar:
     (a boat outside the scene, environment -1, reports nothing). Beams are cast with ``ray_cast.cast_ray``
     through the objects, the boats and, when ``config.water_returns`` (whatever ``Scene.water_visible``
     says), the sea's height map. Call ``scene.refresh()`` after the ocean changes, before :meth:`scan` (the
-    sea's height map and band and the floating objects; a :class:`LidarHook` does).
+    sea's height map and band and the floating objects; ``ocean_warp.envs.sensors.LidarHook`` does).
 
     Args:
         config: the sensor (default ``LidarConfig()``).
@@ -158,85 +155,3 @@ def _lidar_model(config: LidarConfig, device, first_index: int) -> LidarModel:
                        elevation=wp.array(elevation.astype(np.float32), dtype=float, device=device),
                        mount_position=wp.vec3(*config.mount), mount_rotation=wp.quat(*mount_rotation),
                        first_index=first_index)
-
-
-class LidarHook(DecisionHook):
-    """A lidar scanning inside every decision of a :class:`~ocean_warp.envs.SailingEnv`: after every
-    ``period`` = round(1 / (rate dt)) physics steps the scene is refreshed (the sea's band, the floating
-    objects) and every boat scans, so a decision of S steps holds F = S / period scans; ``lidar`` keeps the
-    last (taken after the decision's physics, before the environments that ended are reset, like
-    ``env.final_position``). Attach it with ``env.attach(hook)``.
-
-    Args:
-        env: the environment (its boats carry the lidars; boat i in environment i).
-        config: the sensor (default ``LidarConfig()``); its rate must be a whole number of physics steps
-            that divides the decision's steps, else ``ValueError`` naming ``LidarConfig.rate``.
-        objects: the objects of every environment, placed from each environment's origin (as
-            ``Scene.for_env``); ignored when ``scene`` is given.
-        scene: a scene of this environment's boats to cast through instead.
-        sectors: also keep ``observation``, ``lidar.downsampled(sectors)`` (None: not).
-        record: also keep every scan of the decision in ``recorded_ranges``, ``recorded_kinds`` (F, N, C * B)
-            and the sensor poses ``recorded_sensor_position``, ``recorded_sensor_orientation`` (F, N),
-            preallocated on the device (see :meth:`frames`).
-    """
-
-    def __init__(self, env: SailingEnv, config: LidarConfig | None = None, *, objects=(), scene: Scene | None = None,
-                 sectors: int | None = None, record: bool = False):
-        from ..envs.sailing_env import SailingEnv  # deferred: the environment imports the sensors' configs
-
-        if not isinstance(env, SailingEnv):
-            raise ValueError(f"LidarHook: env must be a SailingEnv (it scans inside its decisions), got {env!r}")
-        config = config if config is not None else LidarConfig()
-        if not isinstance(config, LidarConfig):
-            raise ValueError(f"LidarHook: config must be a LidarConfig, got {config!r}")
-        if not isinstance(record, bool):
-            raise ValueError(f"LidarHook.record must be True or False, got {record!r}")
-        self.period = config.scan_period(env.task.simulator.dt)
-        """Physics steps between scans."""
-        steps = env.steps_per_decision
-        if steps % self.period:
-            raise ValueError(f"LidarConfig.rate {config.rate!r} Hz: a scan every {self.period} steps does not divide "
-                             f"the decision's {steps} steps")
-        self.scans_per_decision = steps // self.period
-        self.scene = scene if scene is not None else Scene.for_env(env, objects)
-        if self.scene.view.boat_position.shape[0] != env.num_envs:
-            raise ValueError(f"LidarHook.scene must hold the environment's {env.num_envs} boats, got "
-                             f"{self.scene.view.boat_position.shape[0]}")
-        self.lidar = Lidar(config, self.scene, first_index=env.first_env)
-        self.observation = None if sectors is None else self.lidar.downsampled(sectors)
-        """(N, sectors) torch view of the last scan's nearest return per sector (``Lidar.downsampled``), or None."""
-        self.record = record
-        if record:
-            frames, device = (self.scans_per_decision, env.num_envs), env.device
-            self.recorded_ranges = wp.zeros(frames + (self.lidar.beam_count,), dtype=float, device=device)
-            self.recorded_kinds = wp.zeros(frames + (self.lidar.beam_count,), dtype=int, device=device)
-            self.recorded_sensor_position = wp.zeros(frames, dtype=wp.vec3, device=device)
-            self.recorded_sensor_orientation = wp.zeros(frames, dtype=wp.quat, device=device)
-            self._frame_slots = [self._slots_of_frame(f) for f in range(self.scans_per_decision)]
-
-    def _slots_of_frame(self, frame: int) -> list[tuple[wp.array, wp.array]]:
-        """(record slot, source) pairs of scan ``frame`` of a decision."""
-        lidar = self.lidar
-        return [(self.recorded_ranges[frame], lidar.range_array), (self.recorded_kinds[frame], lidar.kind_array),
-                (self.recorded_sensor_position[frame], lidar.sensor_position),
-                (self.recorded_sensor_orientation[frame], lidar.sensor_orientation)]
-
-    def after_physics_step(self, env: SailingEnv, step: int) -> None:
-        """After every ``period`` steps: refresh the scene, scan, and keep the scan when recording."""
-        if (step + 1) % self.period:
-            return
-        self.scene.refresh()
-        self.lidar.scan()
-        if self.record:
-            for slot, source in self._frame_slots[(step + 1) // self.period - 1]:
-                wp.copy(slot, source)
-
-    def frames(self) -> dict[str, np.ndarray]:
-        """The last decision's scans on the host (``record`` only): "ranges" [m] and "kinds" (F, N, C * B),
-        "sensor_position" (F, N, 3) [m] and "sensor_orientation" (F, N, 4) x y z w, scan f taken after
-        physics step (f + 1) x ``period`` of the decision."""
-        if not self.record:
-            raise ValueError("LidarHook.frames: build the hook with record=True to keep every scan")
-        return {"ranges": self.recorded_ranges.numpy(), "kinds": self.recorded_kinds.numpy(),
-                "sensor_position": self.recorded_sensor_position.numpy(),
-                "sensor_orientation": self.recorded_sensor_orientation.numpy()}

@@ -60,7 +60,8 @@ class LidarConfig:
     max_range: float = 50.0
     """[m]: nothing farther is seen; the range reported by a beam without a return."""
     rate: float = 10.0
-    """Scans per second [Hz] (of a :class:`LidarHook`: one scan every round(1 / (rate dt)) physics steps)."""
+    """Scans per second [Hz] (of an ``ocean_warp.envs.sensors.LidarHook``: one scan every round(1 / (rate dt))
+    physics steps)."""
     mount: tuple[float, float, float] = BOW_MOUNT
     """The sensor's origin in the body frame [m] (default :data:`BOW_MOUNT`; :data:`MASTHEAD_MOUNT` is the
     other usual place)."""

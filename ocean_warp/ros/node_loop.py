@@ -1,4 +1,4 @@
-"""The decision loop of ``ocean-warp ros`` (:mod:`ocean_warp.ros.node`): commands in (rospy's threads write a
+"""The decision loop of ``ocean-warp ros`` (:mod:`ocean_warp.envs.ros.node`): commands in (rospy's threads write a
 :class:`~ocean_warp.ros.commands.CommandInbox`), pacing at a rate factor (with /clock ticks between decisions)
 or lockstep with the commands, one decision, the state out (and into the MCAP log), episode ends (published and
 logged), the reset service (the clock goes on), a clean stop on SIGINT and SIGTERM."""

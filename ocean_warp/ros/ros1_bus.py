@@ -1,4 +1,4 @@
-"""The ROS 1 side of ``ocean-warp ros`` (:mod:`ocean_warp.ros.node`): registering the node and shutting it down,
+"""The ROS 1 side of ``ocean-warp ros`` (:mod:`ocean_warp.envs.ros.node`): registering the node and shutting it down,
 /use_sim_time, publishers by topic that take :mod:`ocean_warp.ros.topics`' messages, subscribers, the reset
 service and log lines, all through the ``rospy`` module :func:`ocean_warp.ros.ros1.import_rospy` found."""
 

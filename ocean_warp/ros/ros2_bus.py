@@ -1,4 +1,4 @@
-"""The ROS 2 side of ``ocean-warp ros`` (:mod:`ocean_warp.ros.node`, ``--ros 2``): :class:`Ros2Bus`, the
+"""The ROS 2 side of ``ocean-warp ros`` (:mod:`ocean_warp.envs.ros.node`, ``--ros 2``): :class:`Ros2Bus`, the
 interface of :class:`~ocean_warp.ros.ros1_bus.Ros1Bus` on ``rclpy``: ``rclpy.init`` with ROS 2's remapping
 arguments (``--ros-args -r from:=to``), one ``Node`` with ``use_sim_time`` true as a parameter, publishers by
 topic (latched ones: QoS transient-local durability, depth 1, as ``/tf_static`` is in ROS 2), subscribers, the

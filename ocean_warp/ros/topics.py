@@ -1,5 +1,5 @@
 """What every ROS topic of the simulated E-Boats holds: the one home of their names, types, frames and contents,
-for the MCAP logs (:mod:`ocean_warp.ros.mcap_log`) and for a ROS node. No ROS client library is imported: each
+for the MCAP logs (:mod:`ocean_warp.envs.ros.mcap_log`) and for a ROS node. No ROS client library is imported: each
 message is a plain dict of its ROS 2 fields (``header.stamp.sec`` / ``nanosec``, lowercase ``k`` of CameraInfo,
 ...), built from a :class:`~ocean_warp.envs.SailingEnv` on the host.
 
@@ -36,7 +36,7 @@ camera/depth/image_raw              sensor_msgs/msg/Image            depth along
 camera/depth/camera_info            sensor_msgs/msg/CameraInfo       the same pinhole model
 ==================================  ===============================  ==============================================
 
-The ROS node (``ocean-warp ros``, :mod:`ocean_warp.ros.node`) also publishes, per boat, ``mission_control/episode``
+The ROS node (``ocean-warp ros``, :mod:`ocean_warp.envs.ros.node`) also publishes, per boat, ``mission_control/episode``
 (std_msgs/msg/Float32MultiArray, :data:`EPISODE_END`: one message each time an episode ends, with how it ended;
 in the node's ``--record`` log too, :data:`NODE_TOPICS`).
 

@@ -99,7 +99,8 @@ def test_each_rank_restarts_its_own_slice_of_one_batch():
 # --- the launcher ----------------------------------------------------------------------------------------
 
 def test_launcher_command_line():
-    head = ["/py", "-m", "torch.distributed.run", "--standalone", "--nproc_per_node=2", "-m", "ocean_warp.train"]
+    head = ["/py", "-m", "torch.distributed.run", "--standalone", "--nproc_per_node=2",
+            "-m", "ocean_warp.envs.training.train"]
     args = ["--task", "EBoatMission-v0", "--minutes", "5"]
     assert torchrun_command(["--gpus", "2", *args], 2, "/py") == head + args + ["--device", "cuda"]
     assert torchrun_command([*args, "--gpus=2", "--device", "cuda"], 2, "/py") == head + args + ["--device", "cuda"]
@@ -142,7 +143,7 @@ def test_train_command_gpus_errors_and_launch(monkeypatch, capsys):
 
 SUMMARY = """torch.distributed.elastic.multiprocessing.errors.ChildFailedError:
 ============================================================
-ocean_warp.train FAILED
+ocean_warp.envs.training.train FAILED
 ------------------------------------------------------------
 Failures:
 [1]:
@@ -246,15 +247,15 @@ def _tagged(tag: str) -> list[int]:
 
 
 def _torchrun(arguments: list[str], cwd, *, fault: str | None = None, limit_s: float = 240.0):
-    """Run two CPU ranks of ``python -m ocean_warp.train arguments``; (completed process, seconds, leftover
-    pids of the job a few seconds after torchrun exited). Kills the job if it outlives ``limit_s``."""
+    """Run two CPU ranks of ``python -m ocean_warp.envs.training.train arguments``; (completed process, seconds,
+    leftover pids of the job a few seconds after torchrun exited). Kills the job if it outlives ``limit_s``."""
     tag = uuid.uuid4().hex
     env = dict(os.environ, OCEAN_WARP_TEST_TAG=tag, OMP_NUM_THREADS="1", PYTHONUNBUFFERED="1")
     env.pop("OCEAN_WARP_FAULT", None)
     if fault:
         env["OCEAN_WARP_FAULT"] = fault
     command = [sys.executable, "-m", "torch.distributed.run", "--standalone", "--nproc_per_node=2",
-               "-m", "ocean_warp.train", *arguments]
+               "-m", "ocean_warp.envs.training.train", *arguments]
     started = time.monotonic()
     try:
         result = subprocess.run(command, cwd=cwd, env=env, capture_output=True, text=True, timeout=limit_s)

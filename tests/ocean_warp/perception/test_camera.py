@@ -24,8 +24,9 @@ from ocean_warp import Ocean, OceanConfig
 from ocean_warp.eboat import Hydrostatics
 from ocean_warp.envs import SailingEnv, WaypointConfig
 from ocean_warp.envs.decision_hook import DecisionHook
+from ocean_warp.envs.sensors import CameraHook
 from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER
-from ocean_warp.perception import Camera, CameraConfig, CameraHook, Scene, SceneObject, ViewCamera, render_view
+from ocean_warp.perception import Camera, CameraConfig, Scene, SceneObject, ViewCamera, render_view
 from ocean_warp.torch_streams import ordered_with_torch
 from tests.env_buffers import assert_same_buffers
 

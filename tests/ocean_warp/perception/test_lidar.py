@@ -24,9 +24,10 @@ from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, 
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.envs import SailingEnv, WaypointConfig
 from ocean_warp.envs.decision_hook import DecisionHook
+from ocean_warp.envs.sensors import LidarHook
 from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER
 from ocean_warp.meshes import concatenate
-from ocean_warp.perception import Lidar, LidarConfig, LidarHook, Scene, SceneObject, Shape
+from ocean_warp.perception import Lidar, LidarConfig, Scene, SceneObject, Shape
 from ocean_warp.torch_streams import ordered_with_torch
 from tests.env_buffers import assert_same_buffers
 

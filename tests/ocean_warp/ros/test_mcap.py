@@ -1,4 +1,4 @@
-"""The rosbag2 MCAP logs (``ocean_warp.ros.mcap_log``, topics in ``ocean_warp.ros.topics``), read back with an
+"""The rosbag2 MCAP logs (``ocean_warp.envs.ros.mcap_log``, topics in ``ocean_warp.ros.topics``), read back with an
 independent reader (``rosbags``) and checked against the environment's own numbers, numpy and geodesy written
 here; ``ocean-warp demo`` and ``eval`` with ``--record`` end to end (CPU, four-point hull, a few seconds)."""
 
@@ -29,10 +29,12 @@ from ocean_warp.envs.apps import evaluation  # noqa: E402
 from ocean_warp.envs.tasks.obstacle_layout import ObstacleLayoutConfig  # noqa: E402
 from ocean_warp.envs.tasks.task_configs import AvoidConfig, WaypointConfig  # noqa: E402
 from ocean_warp.kernels.ray_cast import HIT_NONE  # noqa: E402
-from ocean_warp.perception import CameraConfig, CameraHook  # noqa: E402
-from ocean_warp.ros import mcap_log, topics  # noqa: E402
+from ocean_warp.envs.ros import mcap_log  # noqa: E402
+from ocean_warp.envs.ros.mcap_log import McapRecorder, check_record_path  # noqa: E402
+from ocean_warp.envs.sensors import CameraHook  # noqa: E402
+from ocean_warp.perception import CameraConfig  # noqa: E402
+from ocean_warp.ros import topics  # noqa: E402
 from ocean_warp.ros.geodesy import GUANABARA_BAY, GeodeticDatum, enu_to_geodetic  # noqa: E402
-from ocean_warp.ros.mcap_log import McapRecorder, check_record_path  # noqa: E402
 from ocean_warp.sensors import SensorConfig  # noqa: E402
 
 HUMBLE = get_typestore(Stores.ROS2_HUMBLE)

@@ -73,8 +73,8 @@ def sailed(tmp_path_factory):
     """(bus, loop, log path) of two boats of the node's task sailed for DURATION_S with a reset at RESET_AT_S;
     boat 1 is carried 300 m away before the first decision (beyond the seed task's 125 m)."""
     pytest.importorskip("mcap_ros2")
-    from ocean_warp.ros.mcap_log import McapRecorder
-    from ocean_warp.ros.node import _Simulation
+    from ocean_warp.envs.ros.mcap_log import McapRecorder
+    from ocean_warp.envs.ros.node import _Simulation
 
     sim = _Simulation.build(argparse.Namespace(sea_state=None, wind=None, seed=5, hull="auto", lidar=False,
                                                camera=False, boats=2), "EBoatWaypoint-v0", "cpu")

@@ -1,4 +1,4 @@
-"""Policies for the boat (ocean_warp.ros.policy_export, onnx_policy): ONNX run by onnxruntime and TorchScript run
+"""Policies for the boat (ocean_warp.envs.ros.policy_export, onnx_policy): ONNX run by onnxruntime and TorchScript run
 by torch.jit.load reproduce every shipped policy's actions to 1e-5, normalisation inside the graph; the metadata
 comes back; ``ocean-warp export-policy`` writes the file or fails in one line; the runner needs neither torch
 nor Warp."""
@@ -14,13 +14,16 @@ import pytest
 import torch
 
 from ocean_warp import cli
+from ocean_warp.envs.ros import policy_export
+from ocean_warp.envs.ros.policy_export import (ActionDifference, ExportError, export_onnx, export_torchscript,
+                                               policy_metadata, read_torchscript_metadata)
+from ocean_warp.envs.registration import make_task_config
+from ocean_warp.envs.tasks.observation_blocks import policy_layout
 from ocean_warp.envs.tasks.task_kernels import POLICY_OBS
 from ocean_warp.envs.training.policies import SHIPPED_POLICIES, shipped_policy_path
 from ocean_warp.envs.training.policy_io import CHECKPOINT_FORMAT, load_policy
-from ocean_warp.ros import onnx_policy, policy_export
+from ocean_warp.ros import onnx_policy
 from ocean_warp.ros.onnx_policy import EXPORT_FORMAT, OnnxPolicy
-from ocean_warp.ros.policy_export import (ActionDifference, ExportError, export_onnx, export_torchscript,
-                                          policy_metadata, read_torchscript_metadata)
 
 pytestmark = pytest.mark.filterwarnings("ignore:`torch.jit.load` is deprecated:DeprecationWarning")
 HAS_ONNX = all(importlib.util.find_spec(name) is not None for name in ("onnx", "onnxruntime"))
@@ -135,9 +138,17 @@ def test_the_normalisation_is_inside_the_graph(form, exports, tmp_path):
     assert not ActionDifference.between(before, run_changed(observations)).within(0.05)
 
 
-def test_the_layouts_match_the_observation_sets():
-    """One description per value of each observation set, as the kernels fill them."""
-    assert {name: len(layout) for name, layout in policy_export.SET_LAYOUTS.items()} == POLICY_OBS
+def test_the_layouts_are_the_task_layers_blocks():
+    """Each value's line is its declared column's (``observation_blocks``), one per value the kernels fill;
+    a policy of an unknown set or task gets placeholders of the right count."""
+    for task in TASKS:
+        config = make_task_config(task)
+        expected = [column.text() for column in policy_layout(config)]
+        assert policy_export.observation_layout(task, config.observation.value, len(expected)) == expected
+    layout = policy_export.observation_layout("EBoatWaypoint-v0", "seed", POLICY_OBS["seed"] + 2)
+    assert layout[-2:] == ["value 5 (appended by EBoatWaypoint-v0: not described here)",
+                           "value 6 (appended by EBoatWaypoint-v0: not described here)"]
+    assert len(policy_export.observation_layout("EBoatWaypoint-v0", "other", 4)) == 4
 
 
 @pytest.mark.parametrize("task", TASKS)
@@ -157,8 +168,8 @@ def test_metadata_round_trip(task, exports):
         assert metadata["observation_normalisation"].startswith("inside")
     if task == "EBoatAvoid-v0":
         layout = read[0]["observation_layout"]
-        assert layout[5].startswith("reef level")
-        assert layout[6].startswith("lidar sector 0: ") and "/ 50 m" in layout[6] and "sector 23" in layout[-1]
+        assert layout[5].startswith("reef_level: reef level")
+        assert layout[6].startswith("lidar_sector_0: ") and "/ 50 m" in layout[6] and "sector_23" in layout[-1]
     if HAS_ONNX:
         runner = OnnxPolicy(onnx_path)
         assert (runner.task, runner.observation, runner.num_obs, runner.num_actions) == (

@@ -255,7 +255,7 @@ def fake_ros2(monkeypatch):
 def published():
     """Every message of a decision of two boats of EBoatWaypoint-v0 (WaypointConfig) with a lidar, from the
     node's own simulation: /clock, /tf_static, the state topics, /tf, lidar/scan, and an episode end."""
-    from ocean_warp.ros.node import _Simulation
+    from ocean_warp.envs.ros.node import _Simulation
 
     args = argparse.Namespace(sea_state=None, wind=None, seed=3, hull="auto", lidar=True, camera=False, boats=2)
     sim = _Simulation.build(args, "EBoatWaypoint-v0", "cpu")
@@ -399,7 +399,8 @@ def test_bus_on_fake_rclpy(fake_ros2, published):
 
 
 def test_ros_option_chooses_the_client(fake_ros2, monkeypatch):
-    from ocean_warp.ros import node, ros1
+    from ocean_warp.envs.ros import node
+    from ocean_warp.ros import ros1
 
     monkeypatch.setattr(ros1, "import_rospy", lambda: (_ for _ in ()).throw(ros1.RosUnavailable("no rospy here")))
     version, client = node._ros_client("auto")
@@ -416,7 +417,7 @@ def test_ros_option_chooses_the_client(fake_ros2, monkeypatch):
 @pytest.mark.skipif(importlib.util.find_spec("rclpy") is None, reason="rclpy is not installed (no ROS 2 here)")
 def test_node_runs_on_real_rclpy():
     """With a real ROS 2: the node starts on rclpy, publishes for 3 s of simulated time and stops cleanly."""
-    argv = [sys.executable, "-c", "import sys; from ocean_warp.ros.node import main; sys.exit(main())",
+    argv = [sys.executable, "-c", "import sys; from ocean_warp.envs.ros.node import main; sys.exit(main())",
             "--ros", "2", "--as-fast-as-possible", "--duration", "3", "--device", "cpu"]
     result = subprocess.run(argv, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr

@@ -47,7 +47,7 @@ if _PROBLEM is not None:
 
 from ocean_warp.ros import ros1  # noqa: E402  (its standard-library part: no rospy in this process)
 from ocean_warp.fleet import END_REASONS  # noqa: E402
-from ocean_warp.ros.node import DEFAULT_CLOCK_HZ  # noqa: E402
+from ocean_warp.envs.ros.node import DEFAULT_CLOCK_HZ  # noqa: E402
 
 
 def _free_port() -> int:
@@ -235,7 +235,7 @@ def waypoint_onnx(tmp_path_factory) -> Path:
     pytest.importorskip("onnx")
     pytest.importorskip("onnxruntime")
     from ocean_warp.envs.training.policies import shipped_policy_path
-    from ocean_warp.ros.policy_export import export_onnx
+    from ocean_warp.envs.ros.policy_export import export_onnx
 
     out = tmp_path_factory.mktemp("policy") / "eboat_waypoint.onnx"
     export_onnx(shipped_policy_path("EBoatWaypoint-v0"), out)

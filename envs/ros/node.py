@@ -52,12 +52,14 @@ from ocean_warp.cli_support import (check_options, checked_device, checked_outpu
                                     finite_at_least, plural, report_error)
 from ocean_warp.ocean_config import SIGNIFICANT_WAVE_HEIGHT_RULE, is_valid_significant_wave_height
 
-from . import ros1
+from ocean_warp.ros import ros1
+from ocean_warp.ros.node_loop import PROG, RESET_SERVICE, NodeLoop
+from ocean_warp.ros.ros1_bus import Ros1Bus
+from ocean_warp.ros.topics import (BOAT_TOPICS, GLOBAL_TOPICS, NODE_TOPICS, boat_namespace, camera_messages,
+                                   clock_message, env_lidar, episode_messages, lidar_messages, snapshot, state_messages,
+                                   static_messages)
+
 from .node_options import DEFAULT_CLOCK_HZ, MAX_CLOCK_HZ, parser as _parser
-from .node_loop import PROG, RESET_SERVICE, NodeLoop
-from .ros1_bus import Ros1Bus
-from .topics import (BOAT_TOPICS, GLOBAL_TOPICS, NODE_TOPICS, boat_namespace, camera_messages, clock_message, env_lidar,
-                     episode_messages, lidar_messages, snapshot, state_messages, static_messages)
 
 __all__ = ["DEFAULT_CLOCK_HZ", "NODE_NAME", "RESET_SERVICE", "main"]
 NODE_NAME = "ocean_warp"
@@ -144,7 +146,7 @@ def main(argv=None) -> int:
     if version == 1:
         bus = Ros1Bus(client, uri, remaps, node_name=NODE_NAME, program=PROG)
     else:
-        from .ros2_bus import Ros2Bus
+        from ocean_warp.ros.ros2_bus import Ros2Bus
 
         bus = Ros2Bus(client, remaps, node_name=NODE_NAME, program=PROG)
     try:
@@ -174,7 +176,7 @@ def main(argv=None) -> int:
 def _ros_client(choice: str):
     """(1 or 2, the rospy or rclpy module) for ``--ros`` ``choice``: "1", "2", or "auto" (ROS 1 where rospy is
     found, else ROS 2 where rclpy imports); an ImportError of one line naming what is missing otherwise."""
-    from .ros2_bus import Ros2Unavailable, import_rclpy
+    from ocean_warp.ros.ros2_bus import Ros2Unavailable, import_rclpy
 
     if choice in ("1", "auto"):
         try:
@@ -217,13 +219,14 @@ class _Simulation:
         sim = cls(env, task_id, args.seed)
         rate = 1.0 / env.decision_period
         if args.lidar and env_lidar(env) is None:
+            from ocean_warp.envs.sensors import LidarHook
             from ocean_warp.envs.tasks.task_configs import avoid_lidar
-            from ocean_warp.perception import LidarHook
 
             sim.lidar_hook = LidarHook(env, avoid_lidar(rate=rate))
             env.attach(sim.lidar_hook)
         if args.camera:
-            from ocean_warp.perception import CameraConfig, CameraHook
+            from ocean_warp.envs.sensors import CameraHook
+            from ocean_warp.perception import CameraConfig
 
             sim.camera_hook = CameraHook(env, CameraConfig(rate=rate))
             env.attach(sim.camera_hook)

@@ -19,7 +19,7 @@ def parser() -> argparse.ArgumentParser:
     parser = job_parser(
         "export-policy", "Export a policy checkpoint for the boat's computer, as ONNX (numpy and onnxruntime run "
         "it) or TorchScript, its observation normalisation inside and its metadata in the file; the file is "
-        "checked against the torch policy before it is written.", long_help_from="ocean_warp.ros.policy_export",
+        "checked against the torch policy before it is written.", long_help_from="ocean_warp.envs.ros.policy_export",
         examples=("ocean-warp export-policy --task EBoatMission-v0",
                   "ocean-warp export-policy --policy out/train/EBoatMission-v0/<date>_<name>/policy.pt "
                   "--out out/export-policy/boat.onnx",

@@ -42,11 +42,12 @@ import torch
 from ocean_warp.atomic_files import atomic_output
 from ocean_warp.cli_support import check_options, checked_output_file, fail
 from ocean_warp.envs.registration import DEFAULT_TASK
+from ocean_warp.envs.tasks.observation_blocks import SET_BLOCKS, lidar_block, reef_block
 from ocean_warp.envs.training.policy_io import (CHECKPOINT_FORMAT, CheckpointError, Policy, is_torchscript_archive,
                                                load_policy)
+from ocean_warp.ros.onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
 
 from .policy_export_options import OUT_FOLDER, parser as _parser
-from .onnx_policy import EXPORT_FORMAT, INPUT_NAME, INSTALL_HINT, OUTPUT_NAME, OnnxPolicy, decode_metadata
 
 __all__ = ["FORMATS", "OPSET", "TOLERANCE", "TORCHSCRIPT_METADATA", "ExportError", "ActionDifference",
            "ExportSummary", "check_observations", "policy_metadata", "observation_layout", "action_meaning",
@@ -65,34 +66,6 @@ CHECK_OBSERVATIONS = 256
 TORCHSCRIPT_METADATA = "ocean_warp_policy.json"
 """Name of the extra file inside an exported TorchScript archive that holds its metadata (a JSON object)."""
 
-SEED_LAYOUT = (
-    "distance to the waypoint: 2 d / d_lost - 1, d_lost = the leg's length + the lost margin [m]; clipped to "
-    "[-1, 1]",
-    "bearing of the waypoint from the bow [deg] / 180, positive to port; clipped to [-1, 1]",
-    "speed ahead u [m/s] / 5 - 1; clipped to [-1, 1]",
-    "apparent wind speed [m/s] / 15 - 1; clipped to [-1, 1]",
-    "apparent wind angle from the bow [deg] / 180, positive to port; clipped to [-1, 1]",
-)
-"""The seed observation set, value by value (``task_kernels.observe``, observation_set 0: exact state)."""
-PLUS_LAYOUT = (
-    "distance to the waypoint from the GNSS fix / d_lost (the leg's length + the lost margin [m])",
-    "sin of the waypoint's bearing from the bow (GNSS and compass), positive to port",
-    "cos of the waypoint's bearing from the bow",
-    "speed through the water [m/s] / 2",
-    "sin of the apparent wind angle (vane), positive to port",
-    "cos of the apparent wind angle",
-    "apparent wind speed (anemometer) [m/s] / 10",
-    "heel from the accelerometer [rad]",
-    "yaw rate (gyro) [rad/s] / 0.5",
-    "rudder angle (actuator feedback) / 60 deg",
-    "boom angle (actuator feedback) / 90 deg",
-    "sheet limit (actuator feedback) / 90 deg",
-    "last action a0 (propeller)",
-    "last action a1 (sheet)",
-    "last action a2 (rudder)",
-)
-"""The plus observation set, value by value (``task_kernels.observe``, observation_set 1: noisy sensors)."""
-SET_LAYOUTS = {"seed": SEED_LAYOUT, "plus": PLUS_LAYOUT}
 ACTION_NOTE = "the Gaussian's mean, not clipped: clip each action to [-1, 1] first, as the simulator does"
 
 
@@ -174,13 +147,14 @@ class ExportSummary:
 
 
 def observation_layout(task: str, observation: str, num_obs: int) -> list[str]:
-    """What each of the ``num_obs`` observation values of a policy for ``task`` is, with scaling and units:
-    the observation set's values, then those the task appends (its reef level, its lidar's sectors), as far as
-    the task's default config says; values it cannot name are "value k (...)"."""
-    base = list(SET_LAYOUTS.get(observation, ()))
-    if not base or num_obs < len(base):
+    """What each of the ``num_obs`` observation values of a policy for ``task`` is, with scaling and units
+    (``"name: scale [unit]"``, from ``ocean_warp.envs.tasks.observation_blocks``): the observation set's
+    values, then those the task appends (its reef level, its lidar's sectors), as far as the task's default
+    config says; values it cannot name are "value k (...)"."""
+    block = SET_BLOCKS.get(observation)
+    if block is None or num_obs < len(block):
         return [f"value {k} (observation set {observation!r}: not described here)" for k in range(num_obs)]
-    return base + _appended_layout(task, len(base), num_obs - len(base))
+    return [column.text() for column in block.columns] + _appended_layout(task, len(block), num_obs - len(block))
 
 
 def _appended_layout(task: str, first: int, count: int) -> list[str]:
@@ -190,25 +164,14 @@ def _appended_layout(task: str, first: int, count: int) -> list[str]:
     if count == 0:
         return []
     config = _default_task_config(task)
-    if config is None or count not in (config.reef_observations + config.lidar_observations,
-                                       config.lidar_observations):
+    reef, lidar = (reef_block(config), lidar_block(config)) if config is not None else ((), ())
+    if count == len(reef) + len(lidar):
+        columns = reef.columns + lidar.columns
+    elif count == len(lidar):
+        columns = lidar.columns
+    else:
         return [f"value {first + k} (appended by {task}: not described here)" for k in range(count)]
-    layout = []
-    if config.reef is not None and count > config.lidar_observations:
-        areas = " / ".join(f"{area:g}" for area in config.simulator.boat.sail_areas)
-        levels = config.simulator.boat.reef_levels
-        layout.append(f"reef level of the sail / {max(levels - 1, 1)}, in [0, 1]: 0 the full sail, 1 the deepest "
-                      f"reef (sail areas {areas} m2 by level, set at the episode's start by the task's rule from "
-                      "the true wind)")
-    lidar = config.lidar
-    if lidar is not None:
-        sectors = config.lidar_sectors
-        azimuths = np.degrees(lidar.azimuths())
-        width = lidar.beams // sectors
-        layout += [f"lidar sector {k}: nearest return over the beams at azimuth {azimuths[k * width]:+.0f} to "
-                   f"{azimuths[(k + 1) * width - 1]:+.0f} deg from the bow (positive to port) / "
-                   f"{lidar.max_range:g} m, in [0, 1]" for k in range(sectors)]
-    return layout
+    return [column.text() for column in columns]
 
 
 def action_meaning(task: str) -> list[str]:

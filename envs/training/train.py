@@ -1,7 +1,8 @@
-"""``python -m ocean_warp.train``: ``ocean-warp train`` as a module, so that torchrun can start it once per rank.
+"""``python -m ocean_warp.envs.training.train``: ``ocean-warp train`` as a module, so that torchrun can start it
+once per rank.
 
-    torchrun --standalone --nproc_per_node=2 -m ocean_warp.train --task EBoatMission-v0 --device cuda --minutes 5
-    python -m ocean_warp.train --help                # the options of ocean-warp train
+    torchrun --standalone --nproc_per_node=2 -m ocean_warp.envs.training.train --task EBoatMission-v0 --minutes 5
+    python -m ocean_warp.envs.training.train --help     # the options of ocean-warp train
 
 (``ocean-warp train --gpus 2 ...`` starts exactly this for you.) An exception that escapes is recorded for
 torchrun (``torch.distributed.elastic``'s ``record``), whose failure summary then shows it.

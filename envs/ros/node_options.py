@@ -10,7 +10,7 @@ from ocean_warp.cli_support import add_device_argument, job_parser
 from ocean_warp.envs.apps.scenario_options import add_sailing_arguments
 from ocean_warp.envs.registration import DEFAULT_TASK
 
-from .ros1 import split_remaps
+from ocean_warp.ros.ros1 import split_remaps
 
 __all__ = ["DEFAULT_CLOCK_HZ", "MAX_CLOCK_HZ", "parser", "own_arguments"]
 
@@ -41,7 +41,7 @@ def parser() -> argparse.ArgumentParser:
     parser = job_parser(
         "ros", "The simulator as a ROS node (ROS 1 through rospy, or ROS 2 through rclpy): each boat publishes the "
         "seed's topics and standard ones once per decision and takes sail, rudder and propulsion commands; a "
-        "reset service restarts every boat. --help-long lists the topics.", long_help_from="ocean_warp.ros.node",
+        "reset service restarts every boat. --help-long lists the topics.", long_help_from="ocean_warp.envs.ros.node",
         examples=("ocean-warp ros", "ocean-warp ros --boats 4 --rate-factor 10 --record out/ros/run.mcap",
                   "ocean-warp ros /eboat/gps/fix:=/fix"))
     add_sailing_arguments(parser, _Defaults())

@@ -14,7 +14,7 @@ Every message's log time, publish time and header stamp is the simulated time (t
 tools show dates in January 1970). What a record holds: ``/clock`` (whenever the simulated time passed the last
 one written), ``/tf`` and each boat's state topics at the current time; each boat's commands
 (``control_interface/*``) at the start of the decision just sailed (from a
-:class:`~ocean_warp.ros.command_tap.CommandTap` the recorder attaches to the env on first sight: the first
+:class:`~ocean_warp.envs.ros.command_tap.CommandTap` the recorder attaches to the env on first sight: the first
 record of an env logs no commands); the lidar's scan (the env's own lidar, or one passed) and the camera's
 images (a camera passed, after a decision in which it rendered); ``/tf_static`` once per namespace prefix and
 sensor. ``ros2 bag play`` republishes ``/tf_static`` with default QoS (the channels carry no QoS metadata):
@@ -30,10 +30,12 @@ from __future__ import annotations
 import importlib
 import os
 
-from .geodesy import GUANABARA_BAY, GeodeticDatum
-from .message_definitions import schema_text
-from .topics import (CLOCK, Message, boat_namespace, camera_messages, clock_message, command_messages, env_lidar,
-                     lidar_messages, snapshot, state_messages, static_messages)
+from ocean_warp.ros.geodesy import GUANABARA_BAY, GeodeticDatum
+from ocean_warp.ros.message_definitions import schema_text
+from ocean_warp.ros.topics import (CLOCK, Message, boat_namespace, camera_messages, clock_message, command_messages,
+                                   env_lidar, lidar_messages, snapshot, state_messages, static_messages)
+
+from .command_tap import CommandTap
 
 __all__ = ["McapRecorder", "check_record_path", "MCAP_INSTALL_HINT"]
 
@@ -112,8 +114,8 @@ class McapRecorder:
     def record(self, env, *, prefix: str = "", lidar=None, camera=None, time_offset_ns: int = 0) -> None:
         """Log ``env``'s boats now (once after the reset, then once after each decision), under ``prefix`` (""
         or an absolute ROS name: ``/autopilot`` puts boat i under ``/autopilot/eboat_i``). ``lidar``: a
-        :class:`~ocean_warp.perception.Lidar` or :class:`~ocean_warp.perception.LidarHook` to log instead of the
-        env's own (its task's lidar, logged by default); ``camera``: a :class:`~ocean_warp.perception.CameraHook`
+        :class:`~ocean_warp.perception.Lidar` or :class:`~ocean_warp.envs.sensors.LidarHook` to log instead of the
+        env's own (its task's lidar, logged by default); ``camera``: a :class:`~ocean_warp.envs.sensors.CameraHook`
         (logged after each decision in which it rendered) or a :class:`~ocean_warp.perception.Camera` (after
         each decision). ``time_offset_ns`` [ns] is added to the simulator's clock (a node that resets its env
         passes what keeps the log's time running on)."""
@@ -172,8 +174,6 @@ class McapRecorder:
         known = self._taps.get(id(env))
         if known is not None and known[0] is env:
             return known[1]
-        from .command_tap import CommandTap
-
         tap = CommandTap(env)
         env.attach(tap)
         self._taps[id(env)] = (env, tap)
