@@ -35,6 +35,16 @@ class Wamv:
                                         "+ turns the boat to port") for side in ("left", "right"))
         self.actions: tuple[ActionSpec, ...] = actions
 
+    def __eq__(self, other) -> bool:
+        """Two WAM-Vs are the same vessel when they are built from equal configs."""
+        return isinstance(other, Wamv) and other.config == self.config
+
+    def __hash__(self) -> int:
+        return hash(self.config)
+
+    def __repr__(self) -> str:
+        return f"Wamv({self.config!r})"
+
     def simulator(self, count: int, *, device=None, first_boat: int = 0, ocean=None) -> WamvSimulator:
         """``count`` WAM-Vs (boats [first_boat, first_boat + count) of a larger batch) on ``ocean`` (None: built)."""
         return WamvSimulator(self.config, count, device=device, ocean=ocean, first_boat=first_boat)

@@ -10,6 +10,8 @@ import sys
 import gymnasium as gym
 import pytest
 
+from ocean_warp.envs.vrx import VrxTaskConfig
+
 from ocean_warp.envs import TASK_IDS, MissionConfig, TaskConfig, make_task_config, register_envs, task_specs
 from ocean_warp.envs.registration import task_name
 from ocean_warp.envs.task_specs import TASK_SPECS, Deferred, TaskSpec, task_spec
@@ -22,14 +24,14 @@ POLICY_FOLDER = pathlib.Path(policies.__file__).resolve().parent
 @pytest.mark.parametrize("spec", TASK_SPECS, ids=[spec.id for spec in TASK_SPECS])
 def test_every_spec_is_whole(spec):
     """Each spec's id is a registered task's (gymnasium knows it with the namespace), its config factory gives
-    a TaskConfig (the one make_task_config gives for the id), its training config is for its own id and
-    trains on a TaskConfig, and its policy file is there where it names one (else none is shipped)."""
+    a task config an env sails (the one make_task_config gives for the id), its training config is for its own id
+    and trains on such a config, and its policy file is there where it names one (else none is shipped)."""
     assert spec.id in TASK_IDS and f"ocean_warp/{spec.id}" in gym.registry
     config = spec.make_config()
-    assert isinstance(config, TaskConfig)
+    assert isinstance(config, (TaskConfig, VrxTaskConfig))
     assert make_task_config(spec.id) == config and make_task_config(f"ocean_warp/{spec.id}") == config
     train = agent_config(spec.id)
-    assert isinstance(train, TrainConfig) and train.task == spec.id and isinstance(train.train_task, TaskConfig)
+    assert isinstance(train, TrainConfig) and train.task == spec.id and isinstance(train.train_task, (TaskConfig, VrxTaskConfig))
     if spec.policy_file is None:
         assert spec.id not in policies.SHIPPED_POLICIES
         with pytest.raises(ValueError, match="no policy is shipped"):
