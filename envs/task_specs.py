@@ -90,12 +90,12 @@ TASK_SPECS: tuple[TaskSpec, ...] = (
     _spec("EBoatAvoidSail-v0", "AvoidSailConfig", "avoid_sail_agent", None,
           "the avoidance task under sail alone (propeller off)"),
     TaskSpec("WamvStationKeeping-v0", Deferred(_VRX, "station_keeping_task"),
-             Deferred(_AGENTS, "wamv_station_keeping_agent"), None,
+             Deferred(_AGENTS, "wamv_station_keeping_agent"), "wamv_station_keeping.pt",
              "VRX's station keeping on the WAM-V: hold a goal pose for 60 s in wind, waves and current"),
     TaskSpec("WamvWayfinding-v0", Deferred(_VRX, "wayfinding_task"), Deferred(_AGENTS, "wamv_wayfinding_agent"),
-             None, "VRX's wayfinding on the WAM-V: visit four goal poses in turn"),
+             "wamv_wayfinding.pt", "VRX's wayfinding on the WAM-V: visit four goal poses in turn"),
     TaskSpec("WamvFollowPath-v0", Deferred(_VRX, "follow_path_task"), Deferred(_AGENTS, "wamv_follow_path_agent"),
-             None, "VRX's follow-the-path on the WAM-V: pass four gates in order"),
+             "wamv_follow_path.pt", "VRX's follow-the-path on the WAM-V: pass four gates in order"),
 )
 """Every task, in the order the command line lists them."""
 
