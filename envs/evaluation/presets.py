@@ -30,7 +30,10 @@ def evaluation_task(task: TaskConfig | str = DEFAULT_TASK, *, sea_state: float |
     ``ValueError`` (an unknown id: one naming the known ones)."""
     task = make_task_config(task) if isinstance(task, str) else task
     if not isinstance(task, TaskConfig):
-        raise ValueError(f"evaluation_task: task must be a TaskConfig or a task id, got {task!r}")
+        if hasattr(task, "vessel"):
+            raise ValueError(f"evaluation_task: {task.kind.value} is one of VRX's tasks, which eval does not sail "
+                             "yet; use python -m benchmarks.studies.wamv_tasks")
+        raise ValueError(f"evaluation_task: task must be a TaskConfig or a task id, got {type(task).__name__}")
     if reef is not None:
         if task.reef is None:
             raise ValueError(f"evaluation_task: reef {reef!r} given, but {type(task).__name__} sails without a reef "

@@ -289,9 +289,11 @@ def test_single_env_returns_the_final_observation(device):
 @pytest.mark.parametrize("task_id", TASK_IDS)
 def test_gymnasium_make_and_make_vec(task_id):
     # the plus observation's 15 values or the seed's 5, then the reef level (every task but the seed's waypoint
-    # task), then the lidar's 24 sectors (the avoidance tasks)
+    # task), then the lidar's 24 sectors (the avoidance tasks); VRX's tasks: 10 values and the WAM-V's 2 actions
     policy_size = {"EBoatWaypointPlus-v0": 15 + 1, "EBoatMissionSail-v0": 15 + 1, "EBoatMission-v0": 5 + 1,
                    "EBoatAvoid-v0": 5 + 1 + 24, "EBoatAvoidSail-v0": 5 + 1 + 24}.get(task_id, 5)
+    if task_id.startswith("Wamv"):
+        policy_size = 10 + 2
     single = gym.make(f"ocean_warp/{task_id}")
     assert isinstance(single.unwrapped, SailingEnvSingle)
     assert single.observation_space.shape == (policy_size,)

@@ -28,7 +28,7 @@ def tiny(task):
     return dataclasses.replace(task, simulator=simulator, start=CALM_START)
 
 
-@pytest.mark.parametrize("task_id", TASK_IDS)
+@pytest.mark.parametrize("task_id", [name for name in TASK_IDS if name.startswith("EBoat")])
 def test_every_task_declares_each_value_of_its_observation_once(task_id):
     task = make_task_config(task_id)
     layout = policy_layout(task)
