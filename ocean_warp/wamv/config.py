@@ -80,6 +80,9 @@ class WamvConfig:
     """Largest thrust astern of one thruster, a magnitude [N] (100)."""
     max_thruster_angle: float = figures.MAX_THRUSTER_ANGLE
     """Azimuth thrusters: largest angle either side [rad] (pi / 2), in (0, pi]."""
+    wind_coefficients: tuple[float, float, float] = figures.WIND_COEFFICIENTS
+    """The wind's lumped coefficients (c_x, c_y [N s^2/m^2], c_z [N m s^2/m^2]) on the apparent wind in the body frame
+    (``kernels.lumped_windage``); zeros: no windage."""
     pontoon_sides: int = 16
     """Mesh resolution: sides of each pontoon's polygonal section (6 to 64)."""
     pontoon_stations: int = 12
@@ -114,6 +117,10 @@ class WamvConfig:
             raise ValueError(f"{owner}.seakeeping must be True or False, got {self.seakeeping!r}")
         object.__setattr__(self, "max_thruster_angle", require_in_range(
             owner, "max_thruster_angle", self.max_thruster_angle, 1e-6, np.pi, unit=" [rad]"))
+        coefficients = np.asarray(self.wind_coefficients, dtype=np.float64).reshape(-1)
+        if coefficients.shape != (3,) or not np.all(np.isfinite(coefficients)) or np.any(coefficients < 0.0):
+            raise ValueError(f"{owner}.wind_coefficients must be 3 finite values >= 0, got {self.wind_coefficients!r}")
+        object.__setattr__(self, "wind_coefficients", tuple(float(c) for c in coefficients))
         object.__setattr__(self, "pontoon_sides", require_int_in_range(owner, "pontoon_sides", self.pontoon_sides,
                                                                        6, 64))
         object.__setattr__(self, "pontoon_stations", require_int_in_range(owner, "pontoon_stations",

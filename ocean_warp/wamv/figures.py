@@ -11,7 +11,7 @@ from __future__ import annotations
 __all__ = ["MASS", "INERTIA", "PONTOON_LENGTH", "PONTOON_RADIUS", "PONTOON_SPACING", "PONTOON_CENTER_X",
            "ENGINE_PIVOTS", "PROPELLER_OFFSET", "MAX_FORCE_FORWARD", "MAX_FORCE_REVERSE", "MAX_THRUSTER_ANGLE",
            "GLF_FORWARD", "GLF_REVERSE", "GLF_DEAD_BAND", "VRX_LINEAR_DAMPING", "VRX_QUADRATIC_DAMPING",
-           "VRX_ADDED_MASS", "GPS_MOUNT", "DECK_HEIGHT", "DECK_SIZE"]
+           "VRX_ADDED_MASS", "WIND_COEFFICIENTS", "GPS_MOUNT", "DECK_HEIGHT", "DECK_SIZE"]
 
 MASS = 180.0
 """[kg] The base link's mass, "from WAM-V spec sheet" (``vrx_urdf/wamv_description/urdf/wamv_base.urdf.xacro``,
@@ -61,6 +61,10 @@ VRX_QUADRATIC_DAMPING = (72.4, 0.0, 0.0, 0.0, 0.0, 0.0)
 """(xUU, yVV, -, -, -, nRR) [N s^2/m^2, N m s^2/rad^2] (same plugin: xUU 72.4, yVV 0, nRR 0)."""
 VRX_ADDED_MASS = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 """(xDotU, yDotV, -, -, -, nDotR) [kg, kg m^2] (same plugin: all 0)."""
+WIND_COEFFICIENTS = (0.5, 0.5, 0.33)
+"""VRX's wind law on the WAM-V, (c_x, c_y [N s^2/m^2], c_z [N m s^2/m^2]): ``<coeff_vector>.5 .5 .33`` of the
+``vrx::USVWind`` plugin's ``wamv`` wind object in VRX's worlds (``vrx_gz/worlds/sydney_regatta.sdf``; the law in
+``vrx_gazebo``'s ``usv_gazebo_wind_plugin.cc``)."""
 GPS_MOUNT = (-0.85, 0.0, 1.3)
 """[m] The GPS antenna: x = -0.85 (``wamv_gazebo/urdf/wamv_gazebo.urdf.xacro``, ``<xacro:wamv_gps name="gps_wamv"
 x="-0.85" />``), y and z the macro's defaults 0 and 1.3 (``vrx_urdf/wamv_gazebo/urdf/components/wamv_gps.xacro``)."""

@@ -24,6 +24,7 @@ from .config import ThrusterLayout
 from .simulator_config import WamvSimulatorConfig
 from .state import WamvControl, WamvStart, WamvState, WamvTensors
 from .thrusters import Thrusters
+from .windage import Windage
 
 __all__ = ["WamvSimulator"]
 
@@ -67,10 +68,11 @@ class WamvSimulator:
         self.wind = Wind(config.wind, count, substep=config.substep_dt, device=device, first_index=self.first_boat)
         self.current = Current(config.current, count, device=device)
         self.thrusters = Thrusters(config.boat, count, device=device)
+        self.windage = Windage(config.boat.wind_coefficients, self.wind, count, device=device)
         self.sensors = Sensors(config.sensors, count, masthead=figures.GPS_MOUNT, wind=self.wind, step=config.dt,
                                gravity=config.water.gravity, device=device, first_index=self.first_boat)
         self.simulator = Simulator(ocean, self.fleet, config.simulator_config(),
-                                   models=[self.wind, self.thrusters, self.sensors], current=self.current)
+                                   models=[self.wind, self.windage, self.thrusters, self.sensors], current=self.current)
         self.ocean = ocean
 
         fleet, thrusters, wind, sensors = self.fleet, self.thrusters, self.wind, self.sensors

@@ -29,8 +29,9 @@ class WamvSimulatorConfig:
     """Which WAM-V (profile, thrusters, figures)."""
     ocean: OceanConfig = dataclasses.field(default_factory=still_water)
     """The sea and its water (default: still sea water)."""
-    wind: WindConfig = dataclasses.field(default_factory=WindConfig)
-    """Mean wind and gusts (read by the sensors; the WAM-V has no windage model yet)."""
+    wind: WindConfig = dataclasses.field(default_factory=lambda: WindConfig(speed=0.0))
+    """Mean wind and gusts (default calm air, as VRX's worlds start): the windage (``WamvConfig.wind_coefficients``)
+    and the sensors read it."""
     current: CurrentConfig = dataclasses.field(default_factory=CurrentConfig)
     """The water's current (default: none)."""
     sensors: SensorConfig = dataclasses.field(default_factory=SensorConfig)
