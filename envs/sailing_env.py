@@ -18,7 +18,8 @@ import torch
 import warp as wp
 
 from ocean_warp.device_structs import struct_from
-from ocean_warp.eboat import EBoatSimulator, Hydrostatics
+from ocean_warp.eboat import EBoatSimulator, EBoatVessel, Hydrostatics
+from ocean_warp.perception.scene import Scene
 from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
@@ -144,11 +145,11 @@ class SailingEnv(BatchedVesselEnv):
         self.clearance = wp.full(n, task.reward.proximity_range, dtype=float, device=device)
         """(N,) each boat's gap to the nearest obstacle after the last decision [m] (the reward's proximity
         range on open water)."""
-        self.obstacles = None
+        self.obstacles = _obstacle_course(task, self.simulator, self.origin, self.first_env, self.clearance,
+                                          lidar_column)
         """The :class:`~ocean_warp.envs.tasks.obstacle_course.ObstacleCourse` (layouts, contact, lidar) of a
-        task with ``obstacles`` or a ``lidar``; None otherwise."""
-        if task.obstacles is not None or task.lidar is not None or task.contact is not None:
-            self.obstacles = ObstacleCourse(self, self.clearance, lidar_column)
+        task with ``obstacles``, ``contact`` or a ``lidar``; None otherwise."""
+        self._hold([] if self.obstacles is None else [self.obstacles])
 
         self._course = struct_from(Course, self)
         """The task's per-environment arrays, grouped as the kernels take them."""
@@ -192,31 +193,25 @@ class SailingEnv(BatchedVesselEnv):
         """The environment layer after the physics: rewards and episode ends, the final observations, new
         episodes for the environments that ended, and the observations of the next decision (launch only)."""
         state = self.simulator.state
-        self._sense()
+        self._sense_components()
         wp.launch(evaluate, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.actions, state.status, state.position, self.clearance, self._course,
                           self._ends])
         self._observe(self.final_policy_obs, self.final_critic_obs)
         self._start_episodes(self.reset_mask)
-        self._sense()
+        self._sense_components()
         self._observe(self.policy_obs, self.critic_obs)
-
-    def _sense(self) -> None:
-        if self.obstacles is not None:
-            self.obstacles.sense()
 
     def _observe(self, policy: wp.array, critic: wp.array) -> None:
         wp.launch(observe, dim=self.num_envs, device=self.device, inputs=[self.parameters, self._boats, self._course],
                   outputs=[policy, critic])
-        if self.obstacles is not None:
-            self.obstacles.append_observation(policy, critic)
+        self._append_component_observations(policy, critic)
 
     def _start_episodes(self, mask: wp.array) -> None:
         wp.launch(draw_starts, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self._course,
                           self._start_rows])
-        if self.obstacles is not None:
-            self.obstacles.draw(self._seed, self.first_env, mask, self._course)
+        self._draw_components(mask, self._course)
         self.simulator.reset_masked(mask)
 
     # --- host calls --------------------------------------------------------------------------------
@@ -230,13 +225,12 @@ class SailingEnv(BatchedVesselEnv):
                 self._seed.fill_(self.seed)
                 self.episode_count.zero_()
                 self.simulator.rewind()
-                if self.obstacles is not None:
-                    self.obstacles.restart_streams()
+                self._restart_component_streams()
             self.terminated.zero_()
             self.time_out.zero_()
             self.done.zero_()
             self._start_episodes(self._everyone)
-            self._sense()
+            self._sense_components()
             self._observe(self.policy_obs, self.critic_obs)
             wp.copy(self.final_policy_obs, self.policy_obs)
             wp.copy(self.final_critic_obs, self.critic_obs)
@@ -259,6 +253,23 @@ class SailingEnv(BatchedVesselEnv):
         if self.task.simulator.boat.hydrostatics is Hydrostatics.POINTS:
             return 0.0
         return self.simulator.eboat.rest_height("cpu", self.task.simulator.water)
+
+
+def _obstacle_course(task: TaskConfig, simulator: EBoatSimulator, origin: wp.array, first_env: int,
+                     clearance: wp.array, lidar_column: int) -> ObstacleCourse | None:
+    """The obstacle course of a task with ``obstacles``, ``contact`` or a ``lidar`` (None otherwise): the scene of
+    the E-Boats, environment i holding boat i from its ``origin`` (N,) [m], with the task's free rows."""
+    if task.obstacles is None and task.lidar is None and task.contact is None:
+        return None
+    n, state = simulator.count, simulator.state
+    scene = Scene(simulator.ocean, envs=n, boat_env=np.arange(n), boat_position=state.position,
+                  boat_orientation=state.orientation, boom_angle=state.boom_angle, origins=origin.numpy(),
+                  water_visible=True, boat=simulator.config.boat, free_slots=task.obstacle_slots,
+                  reef_level=state.reef_level)
+    return ObstacleCourse(scene, layout=task.obstacles, contact=task.contact,
+                          shape=EBoatVessel(task.simulator).collision_shape(), clearance=clearance,
+                          proximity_range=task.reward.proximity_range, lidar=task.lidar,
+                          lidar_sectors=task.lidar_sectors, policy_column=lidar_column, first_env=first_env)
 
 
 def _task_parameters(task: TaskConfig) -> TaskParameters:

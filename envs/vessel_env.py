@@ -3,8 +3,10 @@ commands, the physics steps, the task's kernels), hooks inside it, the sea's hei
 
 A subclass (:class:`~ocean_warp.envs.sailing_env.SailingEnv`, the E-Boat's sailing tasks;
 :class:`~ocean_warp.envs.vrx.vrx_env.VrxEnv`, VRX's tasks on any vessel) builds its simulator, arrays and
-``buffers`` and then calls :meth:`BatchedVesselEnv._start_replay`; it supplies ``launch_actions`` (before the
-physics) and ``launch_task`` (after it).
+``buffers`` and its components (``envs/components.py``: obstacles, sensors, recorders; :meth:`_hold`) and then
+calls :meth:`BatchedVesselEnv._start_replay`; it supplies ``launch_actions`` (before the physics) and
+``launch_task`` (after it), which call the components' hooks through :meth:`_sense_components`,
+:meth:`_append_component_observations` and :meth:`_draw_components`.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import warp as wp
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
 
+from .components import EnvComponent
 from .decision_hook import DecisionHook, HookChain
 from .protocol import episode_log
 
@@ -25,6 +28,35 @@ class BatchedVesselEnv:
     """The decision loop shared by the environments (see the module's docstring). A subclass sets ``task``,
     ``simulator`` (a :class:`~ocean_warp.vessel.VesselSimulator`), ``num_envs``, ``num_actions``,
     ``steps_per_decision``, ``device``, ``buffers``, ``final_position`` and ``final_orientation``."""
+
+    components: list[EnvComponent] = []
+    """What lives inside the decision besides the task, hooks called in this order (:meth:`_hold`)."""
+
+    def _hold(self, components) -> None:
+        """Hold ``components`` (:class:`~ocean_warp.envs.components.EnvComponent`) and add their force models to
+        the simulator, in order."""
+        self.components = list(components)
+        for component in self.components:
+            if not isinstance(component, EnvComponent):
+                raise ValueError(f"{type(self).__name__}: a component must be an EnvComponent, got {component!r}")
+            for model in component.force_models:
+                self.simulator.simulator.add_model(model)
+
+    def _sense_components(self) -> None:
+        for component in self.components:
+            component.sense()
+
+    def _append_component_observations(self, policy: wp.array, critic: wp.array) -> None:
+        for component in self.components:
+            component.append_observation(policy, critic)
+
+    def _draw_components(self, mask: wp.array, course) -> None:
+        for component in self.components:
+            component.draw(self._seed, self.first_env, mask, course)
+
+    def _restart_component_streams(self) -> None:
+        for component in self.components:
+            component.restart_streams()
 
     def _start_replay(self) -> None:
         """Start with no hooks and the decision's graph to be captured at the first step."""

@@ -1,9 +1,11 @@
 """Contact: boats against the objects and other boats of their environment, as a force model of the simulator.
 
     scene = Scene.for_simulator(sim, objects=[SceneObject.pillar((6.0, 0.0), radius=0.5)])
-    sim.simulator.add_model(Contact(scene))      # flags BoatStatus.COLLIDED and pushes the boats apart
+    contact = Contact(scene, ContactConfig(), shape=vessel.collision_shape())
+    sim.simulator.add_model(contact)             # flags BoatStatus.COLLIDED and pushes the boats apart
 
-The kernel and the capsule a boat is taken as: ``ocean_warp.kernels.contact``.
+The kernel: ``ocean_warp.kernels.contact``. The capsule a boat is taken as is its vessel's
+(``ocean_warp.vessel.CollisionShape``): the caller passes it, so that each kind of boat collides as itself.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import warp as wp
 from .device_structs import struct_from
 from .kernels.contact import ContactModel, contact_wrenches
 from .validation import require_non_negative, require_positive
+from .vessel import CollisionShape
 
 __all__ = ["ContactConfig", "Contact", "boat_capsule", "contact_model"]
 
@@ -30,7 +33,7 @@ class ContactConfig:
     damping: float = 3.0e3
     """c [N s/m] on the approach speed along the contact normal."""
     radius: float | None = None
-    """The capsule's radius [m]; None: the hull's half beam."""
+    """The capsule's radius [m]; None: the vessel's (``CollisionShape.radius``). The axis stays the vessel's."""
 
     def __post_init__(self):
         owner = "ContactConfig"
@@ -52,16 +55,17 @@ def boat_capsule(hull_vertices: np.ndarray, radius: float | None = None) -> tupl
     return (np.array([x_low + inset, 0.0, height]), np.array([x_high - inset, 0.0, height]), half_beam)
 
 
-def contact_model(config: ContactConfig | None = None, hull_vertices=None) -> ContactModel:
-    """The kernels' view of ``config`` (default ``ContactConfig()``) and of the capsule of a hull of
-    ``hull_vertices`` (body frame [m]; default the E-Boat's)."""
+def contact_model(config: ContactConfig | None, shape: CollisionShape) -> ContactModel:
+    """The kernels' view of ``config`` (None: ``ContactConfig()``) and of the vessel's capsule ``shape``
+    (``Vessel.collision_shape()``; ``config.radius``, when set, replaces its radius)."""
     config = config if config is not None else ContactConfig()
-    if hull_vertices is None:
-        from .eboat.parts import eboat_parts
-
-        hull_vertices = eboat_parts(hull_detail=1).hull.points
-    stern, bow, radius = boat_capsule(hull_vertices, config.radius)
-    return struct_from(ContactModel, config, stern=wp.vec3(*stern), bow=wp.vec3(*bow), radius=radius)
+    if not isinstance(config, ContactConfig):
+        raise ValueError(f"contact_model: config must be a ContactConfig, got {config!r}")
+    if not isinstance(shape, CollisionShape):
+        raise ValueError(f"contact_model: shape must be the vessel's CollisionShape (Vessel.collision_shape()), "
+                         f"got {shape!r:.80}")
+    radius = shape.radius if config.radius is None else config.radius
+    return struct_from(ContactModel, config, stern=wp.vec3(*shape.stern), bow=wp.vec3(*shape.bow), radius=radius)
 
 
 class Contact:
@@ -69,14 +73,15 @@ class Contact:
     with its objects and with each other, environment by environment: a simulator force model (add it with
     ``Simulator.add_model``, after the models that write the boats' poses' forces it should add to). Each
     substep it flags touching boats ``BoatStatus.COLLIDED`` (kept until a reset) and, with a stiffness,
-    adds the penalty wrench; ``contacts`` (N,) counts the bodies each boat touched at the last substep."""
+    adds the penalty wrench; ``contacts`` (N,) counts the bodies each boat touched at the last substep. Every
+    boat is taken as ``shape``, its vessel's capsule (``Vessel.collision_shape()``)."""
 
-    def __init__(self, scene, config: ContactConfig | None = None, *, hull_vertices=None):
+    def __init__(self, scene, config: ContactConfig | None = None, *, shape: CollisionShape):
         self.config = config if config is not None else ContactConfig()
         if not isinstance(self.config, ContactConfig):
             raise ValueError(f"Contact: config must be a ContactConfig, got {self.config!r}")
         self.scene, self.device = scene, scene.device
-        self.model = contact_model(self.config, hull_vertices)
+        self.model = contact_model(self.config, shape)
         """What the kernel reads (``kernels.contact.ContactModel``)."""
         count = scene.view.boat_position.shape[0]
         self._boat_env = wp.array(scene.boat_env.astype(np.int32), dtype=int, device=self.device)

@@ -1,7 +1,8 @@
 """An environment's obstacle course on the device: the layouts drawn at every reset into a scene's free rows,
 the contact that flags and pushes the boats, the lidar whose sectors the policy sees, and each boat's gap to
-the nearest obstacle (the reward's proximity term). ``SailingEnv`` builds one when its task has
-``obstacles`` or a ``lidar``; everything here is launches only, inside the decision's graph.
+the nearest obstacle (the reward's proximity term): an ``EnvComponent`` (``envs/components.py``) built from
+explicit parts. ``SailingEnv`` holds one when its task has ``obstacles``, ``contact`` or a ``lidar``; everything
+here is launches only, inside the decision's graph.
 """
 
 from __future__ import annotations
@@ -9,11 +10,15 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ocean_warp.contact import Contact, contact_model
+from ocean_warp.contact import Contact, ContactConfig, contact_model
 from ocean_warp.device_structs import struct_from
 from ocean_warp.kernels.contact import object_clearances
 from ocean_warp.perception.lidar import Lidar
+from ocean_warp.perception.lidar_config import LidarConfig
 from ocean_warp.perception.scene import PARKED_DEPTH, Scene
+from ocean_warp.vessel import CollisionShape
+
+from ..components import EnvComponent
 
 from .obstacle_kernels import KIND_BUOY, KIND_PILE, LayoutParameters, ObjectRows, append_sectors, draw_layouts
 from .obstacle_layout import BUOY_COLOR, PILE_COLOR, ObstacleLayoutConfig
@@ -35,46 +40,58 @@ def _layout_parameters(layout: ObstacleLayoutConfig) -> LayoutParameters:
         pile_color=wp.vec3(*PILE_COLOR))
 
 
-class ObstacleCourse:
-    """The obstacles, contact and lidar of a :class:`~ocean_warp.envs.SailingEnv` whose task has them.
+class ObstacleCourse(EnvComponent):
+    """The obstacles, contact and lidar of an environment whose task has them, as an
+    :class:`~ocean_warp.envs.components.EnvComponent` (its hooks: :meth:`draw`, :meth:`sense`,
+    :meth:`append_observation`, :meth:`restart_streams`; its ``force_models``: the contact).
+
+    Args:
+        scene: the :class:`~ocean_warp.perception.Scene` of the env's boats (environment i holds boat i, placed
+            from its origin), with ``scene.free_slots`` rows per environment for the layouts (the device and the
+            environments' count and origins are the scene's).
+        layout: the obstacles drawn at every episode start (None: none drawn).
+        contact: the contact's law (None: no contact force model, the gap is still measured).
+        shape: the vessel's capsule (``Vessel.collision_shape()``), for the contact and the gap.
+        clearance: (N,) float array this course writes each boat's gap to the nearest obstacle into [m].
+        proximity_range: the gap written where no obstacle is nearer [m].
+        lidar: the lidar the policy sees through (None: none) and ``lidar_sectors`` of its beams' minima.
+        policy_column: the policy observation's column the lidar's sectors start at (the critic's: after the
+            privileged values).
+        first_env: the batch's first environment in a larger one (the lidar's noise streams).
 
     Attributes:
-        scene: the :class:`~ocean_warp.perception.Scene` of the env's boats, ``task.obstacle_slots`` free rows
-            per environment (rows ``first_row[e]`` on hold environment e's layout).
-        contact: the :class:`~ocean_warp.contact.Contact` force model added to the simulator (None without).
-        lidar: the :class:`~ocean_warp.perception.Lidar` the policy sees through (None without).
-        clearance: (N,) each boat's gap to the nearest obstacle at the last :meth:`sense` [m] (the reward's
-            proximity range where none is nearer; 0 when touching).
+        contact: the :class:`~ocean_warp.contact.Contact` force model (None without).
+        lidar: the :class:`~ocean_warp.perception.Lidar` (None without).
         obstacle_count: (N,) obstacles in each environment's current layout.
         table: (N, K) vec4 rows x, y from the environment's origin [m], radius [m], kind (``OBSTACLE_*``).
     """
 
-    def __init__(self, env, clearance: wp.array, policy_column: int):
-        task, device, n = env.task, env.device, env.num_envs
-        self.task, self.device, self.num_envs = task, device, n
-        self.slots = task.obstacle_slots
-        self.scene = Scene.for_env(env, free_slots=self.slots, water_visible=True)
-        self.first_row = wp.array(self.scene.first_free_slot.astype(np.int32), dtype=int, device=device)
-        view = self.scene.view
-        self.rows = struct_from(ObjectRows, shape=view.object_shape, anchor=self.scene.anchor,
+    def __init__(self, scene: Scene, *, layout: ObstacleLayoutConfig | None, contact: ContactConfig | None,
+                 shape: CollisionShape, clearance: wp.array, proximity_range: float, lidar: LidarConfig | None = None,
+                 lidar_sectors: int = 0, policy_column: int = 0, first_env: int = 0):
+        device, n = scene.device, scene.envs
+        self.scene, self.device, self.num_envs = scene, device, n
+        self.slots = scene.free_slots
+        self.first_row = wp.array(scene.first_free_slot.astype(np.int32), dtype=int, device=device)
+        view = scene.view
+        self.rows = struct_from(ObjectRows, shape=view.object_shape, anchor=scene.anchor,
                                 position=view.object_position, orientation=view.object_orientation,
                                 size=view.object_size, bound=view.object_bound, color=view.object_color,
-                                floats=self.scene.floats, draft=self.scene.draft)
-        self.layout = None if task.obstacles is None else _layout_parameters(task.obstacles)
+                                floats=scene.floats, draft=scene.draft)
+        self.layout = None if layout is None else _layout_parameters(layout)
         self.obstacle_count = wp.zeros(n, dtype=int, device=device)
         self.table = wp.zeros((n, max(self.slots, 1)), dtype=wp.vec4, device=device)
         """(N, K) every environment's obstacles: x, y from its origin [m], radius [m], kind (``OBSTACLE_*``;
         a row of zeros: none)."""
-        self.contact = None
-        if task.contact is not None:
-            self.contact = Contact(self.scene, task.contact)
-            env.simulator.simulator.add_model(self.contact)
+        self.contact = None if contact is None else Contact(scene, contact, shape=shape)
+        self.force_models = () if self.contact is None else (self.contact,)
         self.clearance = clearance
+        self.proximity_range = float(proximity_range)
         self._boat_env = wp.array(np.arange(n, dtype=np.int32), dtype=int, device=device)
-        self._clearance_model = self.contact.model if self.contact is not None else contact_model()
+        self._clearance_model = self.contact.model if self.contact is not None else contact_model(None, shape)
         """The boats' capsule, for the gap to the obstacles (with or without contact forces)."""
-        self.lidar = None if task.lidar is None else Lidar(task.lidar, self.scene, first_index=env.first_env)
-        self._sectors = None if self.lidar is None else self.lidar.downsampled_array(task.lidar_sectors)
+        self.lidar = None if lidar is None else Lidar(lidar, scene, first_index=first_env)
+        self._sectors = None if self.lidar is None else self.lidar.downsampled_array(lidar_sectors)
         self._policy_column, self._critic_column = policy_column, policy_column + PRIVILEGED_OBS
 
     # --- inside the decision ------------------------------------------------------------------------
@@ -93,8 +110,8 @@ class ObstacleCourse:
         if self.lidar is not None:
             self.lidar.scan()
         wp.launch(object_clearances, dim=self.num_envs, device=self.device,
-                  inputs=[self.scene.view, self._clearance_model, self._boat_env,
-                          float(self.task.reward.proximity_range)], outputs=[self.clearance])
+                  inputs=[self.scene.view, self._clearance_model, self._boat_env, self.proximity_range],
+                  outputs=[self.clearance])
 
     def append_observation(self, policy: wp.array, critic: wp.array) -> None:
         """The lidar's sectors after the observation set's values (policy) and the privileged ones (critic)."""

@@ -17,7 +17,9 @@ from typing import Any
 from ocean_warp.validation import require_int_in_range, require_positive
 from ocean_warp.vessel import require_actions, require_vessel
 
-__all__ = ["VrxTask", "VrxRewardConfig", "VrxStartConfig", "VrxTaskConfig", "wamv_vessel"]
+from .path_course_config import PathCourseConfig
+
+__all__ = ["VrxTask", "VrxRewardConfig", "VrxStartConfig", "VrxTaskConfig", "PathCourseConfig", "wamv_vessel"]
 
 
 class VrxTask(str, enum.Enum):
@@ -135,6 +137,9 @@ class VrxTaskConfig:
     """The observation set's name (checked against a policy's)."""
     actions: tuple[str, ...] | None = None
     """The vessel's actions the task uses, by name (None: all); the others command their neutral value."""
+    path_course: PathCourseConfig | None = dataclasses.field(default_factory=PathCourseConfig)
+    """Following the path: the gates' buoys, the obstacles among them and the contact with them (None: the gates
+    are lines on open water). Not used by the other tasks."""
 
     def __post_init__(self):
         owner = "VrxTaskConfig"
@@ -161,6 +166,8 @@ class VrxTaskConfig:
             raise ValueError(f"{owner}.start must be a VrxStartConfig, got {self.start!r}")
         if not isinstance(self.reward, VrxRewardConfig):
             raise ValueError(f"{owner}.reward must be a VrxRewardConfig, got {self.reward!r}")
+        if self.path_course is not None and not isinstance(self.path_course, PathCourseConfig):
+            raise ValueError(f"{owner}.path_course must be a PathCourseConfig or None, got {self.path_course!r}")
 
     @property
     def simulator(self):

@@ -21,6 +21,7 @@ from ocean_warp.validation import require_int_in_range
 from ..protocol import EnvBuffers
 from ..sailing_env import environment_origins
 from ..vessel_env import BatchedVesselEnv
+from .path_course import PathCourse
 from .task_config import VrxTask, VrxTaskConfig
 from .vrx_kernels import (POLICY_BASE, PRIVILEGED, VesselStartRows, VrxCourse, VrxParameters, VrxStartDistribution,
                           vrx_draw_starts, vrx_evaluate, vrx_observe)
@@ -29,6 +30,8 @@ __all__ = ["VrxEnv", "GATE_HALF_WIDTH"]
 
 GATE_HALF_WIDTH = 5.0
 """Half the width between a gate's two buoys [m]."""
+_SEARCH = 10.0
+"""How far the gap to the nearest buoy is looked for [m]."""
 _KIND = {VrxTask.STATION_KEEPING: 0, VrxTask.WAYFINDING: 1, VrxTask.FOLLOW_PATH: 2}
 
 
@@ -109,6 +112,12 @@ class VrxEnv(BatchedVesselEnv):
         c.episode_length, c.episode_return, c.episode_count = self.episode_length, self.episode_return, self.episode_count
         c.last_action = zeros((n, self.num_actions))
         self._start_rows = struct_from(VesselStartRows, self.simulator.start)
+        self.clearance = wp.full(n, _SEARCH, dtype=float, device=device)
+        """(N,) each boat's gap to the nearest buoy after the last decision [m] (``_SEARCH`` with none nearer)."""
+        self.obstacles = _path_course(task, self.simulator, self.origin, self.clearance)
+        """The :class:`~ocean_warp.envs.vrx.path_course.PathCourse` (gates' buoys, obstacles, contact) of the path
+        with ``path_course``; None otherwise."""
+        self._hold([] if self.obstacles is None else [self.obstacles])
         self.scorer = None
         """What keeps VRX's score of each episode and writes ``final_score`` (``ocean_warp.envs.vrx.scoring``)."""
 
@@ -126,7 +135,9 @@ class VrxEnv(BatchedVesselEnv):
             final_orientation=view(self.final_orientation), final_return=view(self.final_return),
             final_length=view(self.final_length), final_success=view(self.final_success),
             final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
-            final_score=view(self.final_score), obstacles=torch.zeros((n, 0, 4), device=self.torch_device))
+            final_score=view(self.final_score),
+            obstacles=torch.zeros((n, 0, 4), device=self.torch_device) if self.obstacles is None
+            else view(self.obstacles.table))
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`); ``target``
         holds the current goal's world x, y and, in column 2, its heading [rad]."""
         self._start_replay()
@@ -144,6 +155,7 @@ class VrxEnv(BatchedVesselEnv):
         """Rewards and episode ends, VRX's scores, the final observations, new episodes for the environments that
         ended, and the observations of the next decision (launch only)."""
         state = self.simulator.state
+        self._sense_components()
         wp.launch(vrx_evaluate, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, GATE_HALF_WIDTH, self.actions, state.status, state.position,
                           state.orientation, self._course],
@@ -153,6 +165,7 @@ class VrxEnv(BatchedVesselEnv):
             self.scorer.launch_update(self)
         self._observe(self.final_policy_obs, self.final_critic_obs)
         self._start_episodes(self.reset_mask)
+        self._sense_components()
         self._observe(self.policy_obs, self.critic_obs)
 
     def _observe(self, policy: wp.array, critic: wp.array) -> None:
@@ -160,11 +173,13 @@ class VrxEnv(BatchedVesselEnv):
         wp.launch(vrx_observe, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, state.position, state.orientation, state.velocity, state.wind_velocity,
                           self._course], outputs=[policy, critic])
+        self._append_component_observations(policy, critic)
 
     def _start_episodes(self, mask: wp.array) -> None:
         wp.launch(vrx_draw_starts, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self._course,
                           self._start_rows])
+        self._draw_components(mask, self._course)
         self.simulator.reset_masked(mask)
         if self.scorer is not None:
             self.scorer.launch_reset(self, mask)
@@ -178,10 +193,12 @@ class VrxEnv(BatchedVesselEnv):
                 self._seed.fill_(self.seed)
                 self.episode_count.zero_()
                 self.simulator.rewind()
+                self._restart_component_streams()
             self.terminated.zero_()
             self.time_out.zero_()
             self.done.zero_()
             self._start_episodes(self._everyone)
+            self._sense_components()
             self._observe(self.policy_obs, self.critic_obs)
             wp.copy(self.final_policy_obs, self.policy_obs)
             wp.copy(self.final_critic_obs, self.critic_obs)
@@ -191,6 +208,14 @@ class VrxEnv(BatchedVesselEnv):
     def _start_height(self) -> float:
         rest = getattr(self.simulator, "rest_height", None)
         return float(rest()) if callable(rest) else 0.0
+
+
+def _path_course(task: VrxTaskConfig, simulator, origin: wp.array, clearance: wp.array) -> PathCourse | None:
+    """The buoys and contact of the path (a task of kind ``follow_path`` with ``path_course``), else None."""
+    if task.kind is not VrxTask.FOLLOW_PATH or task.path_course is None:
+        return None
+    return PathCourse(simulator, origin, task.path_course, gates=task.goals, gate_half_width=GATE_HALF_WIDTH,
+                      shape=task.vessel.collision_shape(), clearance=clearance, search=_SEARCH)
 
 
 def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDistribution:

@@ -8,10 +8,11 @@ import math
 import numpy as np
 import pytest
 import torch
+import warp as wp
 
 import ocean_warp as ow
 from ocean_warp.contact import Contact, ContactConfig, boat_capsule
-from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig, EBoatVessel
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.envs.protocol import episode_log
 from ocean_warp.perception import Scene, SceneObject
@@ -19,6 +20,7 @@ from ocean_warp.torch_streams import ordered_with_torch
 from tests.hull_setups import rotation_matrix
 
 HULL = eboat_parts(hull_detail=1).hull.points
+EBOAT_SHAPE = EBoatVessel().collision_shape()
 
 
 def still_sim(device, count, positions, headings):
@@ -49,7 +51,7 @@ def test_overlap_and_force_against_hand_computation(device, rng):
     scene = Scene.for_simulator(sim, objects=[SceneObject("sphere", tuple(center), radius=sphere_radius)],
                                 water_visible=False)
     stiffness = float(rng.uniform(1e3, 1e5))
-    contact = Contact(scene, ContactConfig(stiffness=stiffness, damping=0.0))
+    contact = Contact(scene, ContactConfig(stiffness=stiffness, damping=0.0), shape=EBOAT_SHAPE)
     sim.fleet.forces.model_wrench.zero_()
     contact.substep(sim.simulator)
     wrench = sim.fleet.forces.model_wrench.numpy()[0]
@@ -98,8 +100,8 @@ def test_a_boat_driven_into_a_pile_stops_outside_it(device, rng):
     pile_x = float(bow[0] + radius + rng.uniform(4.0, 6.0) + pile_radius)
     pile = SceneObject.pillar((pile_x, 0.0), radius=pile_radius, height=4.0)
     stopped = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
-    positions, orientations = sail_with_contact(stopped, Contact(Scene.for_simulator(stopped, objects=[pile])),
-                                                400, 60.0)
+    stopping = Contact(Scene.for_simulator(stopped, objects=[pile]), shape=EBOAT_SHAPE)
+    positions, orientations = sail_with_contact(stopped, stopping, 400, 60.0)
     clearance = horizontal_distance_to_segment(np.array([pile_x, 0.0]),
                                                capsule_axis(positions[:, 0], orientations[:, 0], stern, bow))
     touching = radius + pile_radius
@@ -107,7 +109,8 @@ def test_a_boat_driven_into_a_pile_stops_outside_it(device, rng):
     assert clearance.min() > touching - 0.06, "and does not go into it"
     assert stopped.state.status.numpy()[0] & ow.BoatStatus.COLLIDED
     free = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
-    flagging = Contact(Scene.for_simulator(free, objects=[pile]), ContactConfig(stiffness=0.0, damping=0.0))
+    flagging = Contact(Scene.for_simulator(free, objects=[pile]), ContactConfig(stiffness=0.0, damping=0.0),
+                       shape=EBOAT_SHAPE)
     through, _ = sail_with_contact(free, flagging, 600, 60.0)
     assert through[-1, 0, 0] + stern[0] - radius > pile_x + pile_radius, "without a force it passes through"
     assert free.state.status.numpy()[0] & ow.BoatStatus.COLLIDED
@@ -121,7 +124,7 @@ def test_two_boats_meeting_head_on_are_flagged_and_kept_apart(device, rng):
     sim = still_sim(device, 3, [[0.0, 0.0, 0.0], [gap, 0.0, 0.0], [gap / 2, 30.0, 0.0]], [0.0, math.pi, 0.0])
     scene = Scene(sim.ocean, envs=2, boat_env=[0, 0, 1], boat_position=sim.state.position,
                   boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=[[], []])
-    positions, orientations = sail_with_contact(sim, Contact(scene), 400, [60.0, 60.0, 60.0])
+    positions, orientations = sail_with_contact(sim, Contact(scene, shape=EBOAT_SHAPE), 400, [60.0, 60.0, 60.0])
     first = capsule_axis(positions[:, 0], orientations[:, 0], stern, bow)
     second = capsule_axis(positions[:, 1], orientations[:, 1], stern, bow)
     # Every step: the real boat, pushed to 2 m/s, may glance off the other in a few steps and sail past it.
@@ -161,8 +164,39 @@ def test_a_boat_driven_into_a_mesh_object_stops_at_its_face(device, rng, tmp_pat
     face_x = float(bow[0] + radius + rng.uniform(3.0, 5.0))
     quay = SceneObject.from_file(tmp_path / "quay.stl", (face_x + 1.0, 0.0, 0.5))
     sim = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
-    positions, orientations = sail_with_contact(sim, Contact(Scene.for_simulator(sim, objects=[quay])), 300, 60.0)
+    contact = Contact(Scene.for_simulator(sim, objects=[quay]), shape=EBOAT_SHAPE)
+    positions, orientations = sail_with_contact(sim, contact, 300, 60.0)
     front = capsule_axis(positions[:, 0], orientations[:, 0], stern, bow)[:, 1, 0] + radius
     assert front.max() > face_x - 0.01, "it reaches the quay"
     assert front.max() < face_x + 0.06, "and does not go into it"
     assert sim.state.status.numpy()[0] & ow.BoatStatus.COLLIDED
+
+
+def test_each_vessel_collides_as_its_own_capsule(device, rng):
+    """A sphere abeam, between the E-Boat's reach and the WAM-V's: the WAM-V (its capsule holds both pontoons:
+    half the spacing plus a pontoon's 16-gon section radius, VRX's figures) touches it, the E-Boat does not.
+    A caller that passes no vessel shape is told so."""
+    from ocean_warp.contact import contact_model
+    from ocean_warp.wamv import Wamv
+
+    sphere_radius = 0.3
+    polygon = math.sqrt(2.0 * math.pi / (16 * math.sin(2.0 * math.pi / 16)))  # equal-area 16-gon / circle
+    wamv_reach = 0.5 * 2.06 + 0.213 * polygon + sphere_radius  # pontoon spacing 2.06 m, radius 0.213 m
+    eboat_reach = float(np.abs(HULL[:, 1]).max()) + sphere_radius  # half beam
+    assert eboat_reach + 0.2 < wamv_reach - 0.2
+    abeam = float(rng.uniform(eboat_reach + 0.1, wamv_reach - 0.1))
+    sphere = SceneObject("sphere", (-0.4, abeam, 0.0), radius=sphere_radius)  # beside the pontoons' middle
+    flagged = {}
+    for name, vessel in (("wamv", Wamv()), ("eboat", EBoatVessel())):
+        sim = vessel.simulator(1, device=device)
+        sim.reset(position=[0.0, 0.0, 0.0], heading=0.0)
+        scene = Scene(sim.ocean, envs=1, boat_env=[0], boat_position=sim.state.position,
+                      boat_orientation=sim.state.orientation, boom_angle=wp.zeros(1, dtype=float, device=sim.device),
+                      objects=[[sphere]], water_visible=False)
+        contact = Contact(scene, ContactConfig(stiffness=0.0, damping=0.0), shape=vessel.collision_shape())
+        contact.substep(sim.simulator)
+        flagged[name] = bool(sim.state.status.numpy()[0] & ow.BoatStatus.COLLIDED)
+        assert contact.contacts.numpy()[0] == int(flagged[name])
+    assert flagged == {"wamv": True, "eboat": False}
+    with pytest.raises(ValueError, match="contact_model: shape must be the vessel's CollisionShape"):
+        contact_model(ContactConfig(), None)

@@ -1,0 +1,46 @@
+"""The config of VRX's follow-the-path course's buoys (``envs/vrx/path_course.py``), kept light for the task
+configs."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from ocean_warp.contact import ContactConfig
+from ocean_warp.validation import require_int_in_range, require_non_negative, require_positive
+
+__all__ = ["PathCourseConfig"]
+
+
+@dataclasses.dataclass(frozen=True)
+class PathCourseConfig:
+    """The buoys of the path and its obstacles. Invalid values raise ``ValueError`` naming the field."""
+
+    gate_buoy_radius: float = 0.25
+    """Radius of a gate's buoys [m] (their centres are ``GATE_HALF_WIDTH`` either side of the gate's centre)."""
+    obstacles: int = 3
+    """Obstacle buoys tried per episode (fewer where they find no clear place in ``attempts`` draws)."""
+    obstacle_radius: float = 0.4
+    """[m]"""
+    opening_clearance: float = 3.0
+    """Least gap between an obstacle's surface and a gate's opening (the segment between its buoys) [m]."""
+    start_clearance: float = 5.0
+    """Least gap between an obstacle's surface and the boat's start [m]."""
+    spacing: float = 2.0
+    """Least gap between two obstacles [m]."""
+    cross_track: float = 4.0
+    """Obstacles lie up to this far off the line of their leg [m]."""
+    attempts: int = 8
+    """Draws per obstacle before its row is left empty."""
+    contact: ContactConfig | None = dataclasses.field(default_factory=ContactConfig)
+    """The contact's law (None: the buoys are there but nothing touches them)."""
+
+    def __post_init__(self):
+        owner = "PathCourseConfig"
+        for name in ("gate_buoy_radius", "obstacle_radius"):
+            object.__setattr__(self, name, require_positive(owner, name, getattr(self, name), unit=" [m]"))
+        for name in ("opening_clearance", "start_clearance", "spacing", "cross_track"):
+            object.__setattr__(self, name, require_non_negative(owner, name, getattr(self, name), unit=" [m]"))
+        object.__setattr__(self, "obstacles", require_int_in_range(owner, "obstacles", self.obstacles, 0, 64))
+        object.__setattr__(self, "attempts", require_int_in_range(owner, "attempts", self.attempts, 1, 64))
+        if self.contact is not None and not isinstance(self.contact, ContactConfig):
+            raise ValueError(f"{owner}.contact must be a ContactConfig or None, got {self.contact!r}")
