@@ -38,8 +38,11 @@ def pose_errors(position, orientation, origin, goals) -> torch.Tensor:
     return d + 0.75**d * heading.abs()
 
 
-def sail(task_id: str, policy_path: str | None, runs: int, wind: float, sea: float, seed: int, device: str) -> dict:
+def sail(task_id: str, policy_path: str | None, runs: int, wind: float, sea: float, seed: int, device: str,
+         duration: float | None = None) -> dict:
     task = make_task_config(task_id)
+    if duration is not None:
+        task = make_task_config(task, max_episode_steps=int(round(duration / task.decision_period)))
     task = dataclasses.replace(task, vessel=wamv_vessel(sea),
                                start=dataclasses.replace(task.start, wind_speed=(wind, wind)))
     env = make_env(task, runs, device=device, seed=seed)
@@ -74,6 +77,7 @@ def sail(task_id: str, policy_path: str | None, runs: int, wind: float, sea: flo
     else:
         score = outcome["gates"]
     return {"task": task_id, "policy": policy_path or "none (zero thrust)", "runs": runs, "wind_m_s": wind,
+            "duration_s": task.episode_time,
             "sea_hs_m": sea, "seed": seed, "device": str(env.device), "vrx_score_mean": float(score.mean()),
             "vrx_score_median": float(score.median()), "success_rate": float(outcome["success"].mean()),
             "scores": [round(float(v), 4) for v in score.cpu()]}
@@ -87,10 +91,11 @@ def main(argv=None) -> None:
     parser.add_argument("--wind", type=float, default=5.0, help="mean true wind [m/s]")
     parser.add_argument("--sea", type=float, default=0.3, help="significant wave height [m]")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--duration", type=float, help="a run's time limit [s] (default: the task's; VRX runs 300 s)")
     parser.add_argument("--device", default="cpu")
     parser.add_argument("--json", help="write the result here")
     args = parser.parse_args(argv)
-    result = sail(args.task, args.policy, args.runs, args.wind, args.sea, args.seed, args.device)
+    result = sail(args.task, args.policy, args.runs, args.wind, args.sea, args.seed, args.device, args.duration)
     print(f"{result['task']}: {result['policy']}: VRX score mean {result['vrx_score_mean']:.3f}, median "
           f"{result['vrx_score_median']:.3f}, success {result['success_rate']:.2f} over {result['runs']} runs")
     if args.json:
