@@ -32,7 +32,7 @@ from ..kernels.ray_cast import (
     water_band,
 )
 from ..mesh_files import read_mesh_file
-from ..meshes import MeshData, concatenate
+from ..meshes import MeshData
 from ..ocean import Ocean
 from ..validation import require_finite, require_positive
 from ..vessel import PartScaling, VesselPart, part_scaling, require_vessel

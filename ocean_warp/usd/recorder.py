@@ -47,8 +47,8 @@ from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow, 
 from .vessel_prims import VesselFleetWriter, define_vessel_prototype, vessel_prototype_path
 from .view import define_camera, define_lights
 
-__all__ = ["StageRecorder", "record_eboat", "record_vessel", "write_ocean_loop", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
-           "loop_path_for"]
+__all__ = ["StageRecorder", "record_eboat", "record_vessel", "write_ocean_loop", "INSTANCING_THRESHOLD",
+           "TIME_CODES_PER_SECOND", "loop_path_for"]
 
 INSTANCING_THRESHOLD = 64
 """Fleets larger than this are written as point instancers unless ``FleetDrawing.instanced`` says otherwise."""
