@@ -21,7 +21,8 @@ from .geometry import define_mesh
 from .materials import LOOKS_BY_NAME, bind_look, define_look
 from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, LIBRARY, boat_path
 
-__all__ = ["MATERIAL_LOOKS", "prim_name", "vessel_prototype_path", "define_vessel_prototype", "VesselFleetWriter"]
+__all__ = ["MATERIAL_LOOKS", "prim_name", "vessel_prototype_path", "define_vessel_prototype", "VesselFleetWriter",
+           "define_fleet_prim", "define_boat_prim", "set_boat_pose"]
 
 MATERIAL_LOOKS = {"hull": "Hull", "sail": "Sail", "foil": "Foil", "metal": "Spar", "dark": "Foil"}
 """The look (:data:`~ocean_warp.usd.materials.LOOKS_BY_NAME`) of each ``VesselPart.material`` (others: Hull)."""
@@ -57,23 +58,42 @@ def define_vessel_prototype(stage, path: str, parts) -> dict[str, str]:
     return paths
 
 
+def define_fleet_prim(stage, count: int):
+    """The fleet's Xform, an ``assembly`` model that says how many boats it holds."""
+    fleet = UsdGeom.Xform.Define(stage, FLEET)
+    fleet.GetPrim().CreateAttribute(BOAT_COUNT_ATTRIBUTE, Sdf.ValueTypeNames.Int, custom=True).Set(int(count))
+    Usd.ModelAPI(fleet.GetPrim()).SetKind(Kind.Tokens.assembly)
+    return fleet
+
+
+def define_boat_prim(stage, index: int) -> tuple:
+    """Boat ``index``'s Xform, a ``component`` model; returns its (translate, orient) ops for :func:`set_boat_pose`."""
+    boat = UsdGeom.Xform.Define(stage, boat_path(index))
+    Usd.ModelAPI(boat.GetPrim()).SetKind(Kind.Tokens.component)
+    return boat.AddTranslateOp(UsdGeom.XformOp.PrecisionDouble), boat.AddOrientOp(UsdGeom.XformOp.PrecisionFloat)
+
+
+def set_boat_pose(ops: tuple, position, orientation, time_code: float) -> None:
+    """A boat's pose at ``time_code``: ``position`` (3,) [m] and ``orientation`` (4,) x, y, z, w."""
+    translate, orient = ops
+    x, y, z = map(float, position)
+    qx, qy, qz, qw = map(float, orientation)
+    translate.Set(Gf.Vec3d(x, y, z), time_code)
+    orient.Set(Gf.Quatf(qw, qx, qy, qz), time_code)
+
+
 class VesselFleetWriter:
     """One Xform per boat under :data:`~ocean_warp.usd.paths.FLEET` (``component`` models in an ``assembly``),
     each with one child per part referencing ``prototype`` (part name -> path)."""
 
     def __init__(self, stage, count: int, prototype: dict[str, str], parts):
-        fleet = UsdGeom.Xform.Define(stage, FLEET)
-        fleet.GetPrim().CreateAttribute(BOAT_COUNT_ATTRIBUTE, Sdf.ValueTypeNames.Int, custom=True).Set(int(count))
-        Usd.ModelAPI(fleet.GetPrim()).SetKind(Kind.Tokens.assembly)
+        define_fleet_prim(stage, count)
         self.parts = tuple(parts)
         self.joints = tuple((part.joint, part.joint_column) for part in self.parts if part.joint is not None)
         """(state array name, column) of each jointed part, in the order of the parts."""
         self._pose, self._turns = [], []
         for i in range(count):
-            boat = UsdGeom.Xform.Define(stage, boat_path(i))
-            Usd.ModelAPI(boat.GetPrim()).SetKind(Kind.Tokens.component)
-            self._pose.append((boat.AddTranslateOp(UsdGeom.XformOp.PrecisionDouble),
-                               boat.AddOrientOp(UsdGeom.XformOp.PrecisionFloat)))
+            self._pose.append(define_boat_prim(stage, i))
             turns = []
             for part in self.parts:
                 prim = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{prim_name(part.name)}")
@@ -92,10 +112,7 @@ class VesselFleetWriter:
             angles.append(values if values.ndim == 1 else values[:, column])
         degrees = -np.degrees(np.column_stack(angles)) if angles else np.zeros((len(self._pose), 0))
         with Sdf.ChangeBlock():
-            for i, (translate, orient) in enumerate(self._pose):
-                x, y, z = map(float, positions[i])
-                qx, qy, qz, qw = map(float, orientations[i])
-                translate.Set(Gf.Vec3d(x, y, z), time_code)
-                orient.Set(Gf.Quatf(qw, qx, qy, qz), time_code)
+            for i, ops in enumerate(self._pose):
+                set_boat_pose(ops, positions[i], orientations[i], time_code)
                 for op, value in zip(self._turns[i], degrees[i]):
                     op.Set(float(value), time_code)
