@@ -24,7 +24,8 @@ RGB (8 bits a channel, sRGB encoded): shading in linear RGB, then the sRGB trans
   down, bright at grazing angles.
 - Objects and boats: Lambert, ``albedo (AMBIENT + (1 - AMBIENT) max(n . sun, 0))`` with the sun in
   :data:`SUN_DIRECTION`; an object's albedo is its ``SceneView.object_color``, a boat's :data:`HULL_COLOR`
-  (hull, keel and mast: ``RayHit.part`` 0) or :data:`SAIL_COLOR` (boom and sail: part 1).
+  (a part of look 0: ``RayHit.part``, the E-Boat's hull, keel and mast) or :data:`SAIL_COLOR` (look 1: sails and
+  spars, the E-Boat's boom and sail).
 - Haze (``CameraLens.haze_distance`` > 0): every hit fades toward the horizon's colour by
   1 - exp(-distance / haze_distance).
 """

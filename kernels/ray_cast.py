@@ -2,9 +2,9 @@
 
 A ray is cast in one environment: it sees that environment's objects (spheres and vertical cylinders,
 analytic; any other shape as a Warp mesh with its BVH, ``wp.mesh_query_ray``), the boats of that
-environment (the hull, keel and mast as one mesh in the body frame; the boom's spar in the boom's pivot
-frame, turned by the boom angle; the sail in its tack's frame on the boom, scaled about the tack by the boat's
-reef) except the one the sensor rides on, and the sea.
+environment (each a vessel's parts: rigid meshes, fixed in the body frame or turned about their pivot's z by a
+joint angle, one may be scaled per boat, as the E-Boat's sail by its reef) except the one the sensor rides on,
+and the sea.
 
 The sea is a height map: the surface height above every node of the ocean's periodic grid, resampled
 when the scene is refreshed (:func:`resample_heights`; exactly the ocean's surface at the nodes, its
@@ -77,24 +77,30 @@ class SceneView:
     """Boat indices, environment by environment."""
     boat_position: wp.array(dtype=wp.vec3)
     boat_orientation: wp.array(dtype=wp.quat)
-    boom_angle: wp.array(dtype=float)
-    """[rad], positive to port: the boom mesh turns by -boom about the pivot's z axis."""
+    part_mesh: wp.array(dtype=wp.uint64)
+    """(P,) each part of the vessel: its mesh, in its own frame (see ``part_origin``)."""
+    part_pivot: wp.array(dtype=wp.vec3)
+    """(P,) where each part's pivot sits in the body frame [m] (a fixed part: the body origin)."""
+    part_origin: wp.array(dtype=wp.vec3)
+    """(P,) where the mesh's origin sits in the pivot's frame [m]: a scaled part scales about it."""
+    part_joint: wp.array(dtype=int)
+    """(P,) -1: a fixed part; k in 0..2: the part turns by minus ``joint_k[boat, part_column]`` about its pivot's
+    z axis."""
+    part_column: wp.array(dtype=int)
+    part_scaled: wp.array(dtype=int)
+    """(P,) 1: the part is drawn scaled by ``reef_scale[reef_level[boat]]`` about its mesh's origin."""
+    part_look: wp.array(dtype=int)
+    """(P,) what ``RayHit.part`` reports for the part: 0 a hull's colour, 1 a sail's or a spar's."""
+    joint_0: wp.array2d(dtype=float)
+    """(B, C) a joint state of the boats [rad] (a vessel's ``boom_angle``, ``thruster_angle``...)."""
+    joint_1: wp.array2d(dtype=float)
+    joint_2: wp.array2d(dtype=float)
     reef_level: wp.array(dtype=int)
-    """Each boat's reef level, an index into ``reef_scale``."""
+    """Each boat's level of its scaled part, an index into ``reef_scale`` (the E-Boat's reef)."""
     reef_scale: wp.array(dtype=float)
-    """(levels,) the linear factor on the sail about its tack of each reef level (level 0: 1)."""
-    body_mesh: wp.uint64
-    """Hull, keel and mast in the body frame."""
-    boom_mesh: wp.uint64
-    """The boom's spar in its pivot frame."""
-    sail_mesh: wp.uint64
-    """The full sail with its tack at the origin, in the boom pivot's axes."""
-    boom_pivot: wp.vec3
-    """Boom pivot in the body frame [m]."""
-    sail_tack: wp.vec3
-    """The sail's tack in the boom's pivot frame [m]."""
+    """(levels,) the linear factor on the scaled part about its origin at each level (level 0: 1)."""
     boat_bound: float
-    """Radius of a sphere about the body origin that holds the whole boat, boom swung included [m]."""
+    """Radius of a sphere about the body origin that holds the whole boat, its parts turned any way [m]."""
 
 
 @wp.struct
@@ -106,7 +112,7 @@ class RayHit:
     index: int
     """The object's or the boat's index (-1 for the water or nothing)."""
     part: int
-    """Of a boat: 0 the hull, keel and mast, 1 the boom or the sail."""
+    """Of a boat: the look of the part hit (``SceneView.part_look``: 0 a hull, 1 a sail or a spar)."""
     normal: wp.vec3
     """Unit normal of the surface hit, world frame, facing the ray."""
 
@@ -223,6 +229,33 @@ def _scaled_mesh_in_frame(mesh: wp.uint64, position: wp.vec3, orientation: wp.qu
         normal = wp.quat_rotate(orientation, query.normal)
         return wp.vec4(scale * query.t, normal[0], normal[1], normal[2])
     return wp.vec4(-1.0, 0.0, 0.0, 0.0)
+
+
+@wp.func
+def _joint_angle(scene: SceneView, joint: int, boat: int, column: int) -> float:
+    if joint == 0:
+        return scene.joint_0[boat, column]
+    if joint == 1:
+        return scene.joint_1[boat, column]
+    return scene.joint_2[boat, column]
+
+
+@wp.func
+def _part(scene: SceneView, p: int, boat: int, position: wp.vec3, rotation: wp.quat, origin: wp.vec3,
+          direction: wp.vec3, t_max: float) -> wp.vec4:
+    """(t, world normal) of the unit ray against part ``p`` of ``boat`` (at ``position``, ``rotation``), posed by
+    its joint and scaled by its level; t = -1 on a miss."""
+    frame = rotation
+    joint = scene.part_joint[p]
+    if joint >= 0:
+        angle = _joint_angle(scene, joint, boat, scene.part_column[p])
+        frame = rotation * wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), -angle)
+    at = position + wp.quat_rotate(rotation, scene.part_pivot[p]) + wp.quat_rotate(frame, scene.part_origin[p])
+    if scene.part_scaled[p] != 0:
+        level = wp.clamp(scene.reef_level[boat], 0, scene.reef_scale.shape[0] - 1)
+        return _scaled_mesh_in_frame(scene.part_mesh[p], at, frame, scene.reef_scale[level], origin, direction,
+                                     t_max)
+    return _mesh_in_frame(scene.part_mesh[p], at, frame, origin, direction, t_max)
 
 
 @wp.kernel(enable_backward=False)
@@ -410,16 +443,9 @@ def cast_ray(scene: SceneView, env: int, origin: wp.vec3, direction: wp.vec3, t_
         if _misses_bound(position, scene.boat_bound, origin, direction, hit.t):
             continue
         rotation = scene.boat_orientation[boat]
-        hit = _nearer(hit, _mesh_in_frame(scene.body_mesh, position, rotation, origin, direction, hit.t), t_min,
-                      HIT_BOAT, boat, 0)
-        boom = rotation * wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), -scene.boom_angle[boat])
-        pivot = position + wp.quat_rotate(rotation, scene.boom_pivot)
-        hit = _nearer(hit, _mesh_in_frame(scene.boom_mesh, pivot, boom, origin, direction, hit.t), t_min,
-                      HIT_BOAT, boat, 1)
-        tack = pivot + wp.quat_rotate(boom, scene.sail_tack)
-        reef = wp.clamp(scene.reef_level[boat], 0, scene.reef_scale.shape[0] - 1)
-        hit = _nearer(hit, _scaled_mesh_in_frame(scene.sail_mesh, tack, boom, scene.reef_scale[reef], origin,
-                                                 direction, hit.t), t_min, HIT_BOAT, boat, 1)
+        for p in range(scene.part_mesh.shape[0]):
+            hit = _nearer(hit, _part(scene, p, boat, position, rotation, origin, direction, hit.t), t_min, HIT_BOAT,
+                          boat, scene.part_look[p])
     if scene.water_visible != 0:
         t = water_distance(scene.heights, scene.surface, scene.water_band, origin, direction, t_min, hit.t)
         if t >= 0.0 and (t < hit.t or hit.kind == HIT_NONE):

@@ -20,8 +20,8 @@ import numpy as np
 
 from .meshes import MeshData
 
-__all__ = ["ActionSpec", "VesselPart", "CollisionShape", "Vessel", "VesselSimulator", "require_vessel",
-           "require_actions"]
+__all__ = ["ActionSpec", "VesselPart", "PartScaling", "CollisionShape", "Vessel", "VesselSimulator", "require_vessel",
+           "require_actions", "part_scaling"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -50,6 +50,25 @@ class VesselPart:
     joint_column: int = 0
     material: str = "hull"
     """A material name the viewers know (``hull``, ``sail``, ``foil``, ``metal``, ``dark``)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class PartScaling:
+    """Parts a viewer draws at a size of each boat's own (the E-Boat's sail at its reef): part ``parts`` scaled by
+    ``scales[level]`` about ``origin`` [m, in the part's pivot frame], level the boat's row of the int32 state array
+    named ``level``. A vessel that has such parts says so with a ``part_scaling()`` method (see
+    :func:`part_scaling`)."""
+
+    parts: tuple[str, ...]
+    level: str
+    scales: tuple[float, ...]
+    origin: tuple[float, float, float]
+
+
+def part_scaling(vessel) -> PartScaling | None:
+    """The vessel's :class:`PartScaling` (its optional ``part_scaling()``), None where it has none."""
+    method = getattr(vessel, "part_scaling", None)
+    return method() if callable(method) else None
 
 
 @dataclasses.dataclass(frozen=True)

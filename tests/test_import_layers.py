@@ -121,3 +121,56 @@ def test_the_checker_finds_planted_imports_of_the_environments():
 def test_the_checker_finds_planted_imports_above_the_kernels():
     source = "from . import ray_cast\nfrom ..fleet import Fleet\nimport ocean_warp.kernels.fft\nimport ocean_warp\n"
     assert kernels_rule(source, "ocean_warp.kernels.planted") == [(2, "ocean_warp.fleet.Fleet"), (4, "ocean_warp")]
+
+
+# --- the vessel seam: what draws, senses, records and publishes boats takes a vessel ----------------------
+
+VESSEL_BLIND = ("ocean_warp.perception", "ocean_warp.usd", "ocean_warp.ros", "ocean_warp.contact")
+"""The core's modules that take a vessel (``ocean_warp.vessel``) and must not import a particular one."""
+
+KNOWN_VESSEL_IMPORTS = {
+    # The scene's default boat: Scene(..., boom_angle=...) without parts draws the E-Boat as before the seam.
+    "ocean_warp.perception.scene": {"ocean_warp.eboat.simulator_config.EBoatSimulatorConfig",
+                                    "ocean_warp.eboat.vessel.EBoatVessel"},
+    # The lidar's default mount, the E-Boat's masthead (a vessel does not say where its sensors sit yet).
+    "ocean_warp.perception.lidar_config": {"ocean_warp.eboat.eboat.MAST_LENGTH", "ocean_warp.eboat.sheet.MAST_STEP"},
+    # The E-Boat's own stage layout (Boom/Reef, the Bodies/Booms/Sails/Rudders instancers, sails at their reef),
+    # which its stages keep; any other vessel is drawn part by part (ocean_warp.usd.vessel_prims).
+    "ocean_warp.usd.boat_prototype": {f"ocean_warp.eboat.parts.{name}"
+                                      for name in ("BODY", "BOOM", "REEF", "RUDDER", "BoatParts")},
+    "ocean_warp.usd.fleet_prims": {f"ocean_warp.eboat.parts.{name}"
+                                   for name in ("BODY", "BOOM", "REEF", "RUDDER", "BoatParts")},
+    "ocean_warp.usd.recorder": {"ocean_warp.eboat.parts.eboat_parts"},
+    "ocean_warp.usd.stage_options": {"ocean_warp.eboat.eboat.EBoatConfig"},
+    # Contact's default capsule, the E-Boat's hull (a vessel's CollisionShape is not wired into contact yet).
+    "ocean_warp.contact": {"ocean_warp.eboat.parts.eboat_parts"},
+}
+"""Imports of ``ocean_warp.eboat`` still made by the vessel-blind modules, each with why (issue 35)."""
+
+
+def vessel_rule(source: str, module: str, is_package: bool = False) -> list[tuple[int, str]]:
+    """The seam's rule for a vessel-blind module: nothing of ``ocean_warp.eboat`` or ``ocean_warp.wamv``."""
+    return layer_violations(source, module, is_package, ["ocean_warp.eboat", "ocean_warp.wamv"])
+
+
+def test_the_vessel_blind_modules_import_no_vessel():
+    files = [(path, module) for path, module in _files("ocean_warp")
+             if any(within(module, package) for package in VESSEL_BLIND)]
+    assert len(files) > 25, "the walk found too few of the vessel-blind modules"
+    found: dict[str, set[str]] = {}
+    for path, module in files:
+        for _, name in vessel_rule(path.read_text(encoding="utf-8"), module, path.name == "__init__.py"):
+            found.setdefault(module, set()).add(name)
+    wrong = {module: names - KNOWN_VESSEL_IMPORTS.get(module, set()) for module, names in found.items()}
+    wrong = {module: names for module, names in wrong.items() if names}
+    assert not wrong, f"modules that take a vessel import a particular one: {wrong}"
+    stale = {module: names - found.get(module, set()) for module, names in KNOWN_VESSEL_IMPORTS.items()}
+    assert not any(stale.values()), f"known exceptions no longer imported (drop them from the list): {stale}"
+
+
+def test_the_checker_finds_planted_imports_of_a_vessel():
+    source = ("from ..meshes import MeshData\nfrom ..vessel import VesselPart\n"
+              "def f():\n    from ..eboat.parts import eboat_parts\n    import ocean_warp.wamv\n"
+              "from ocean_warp import eboat\nfrom ..eboatish import x\n")
+    assert sorted(vessel_rule(source, "ocean_warp.perception.planted")) == [
+        (4, "ocean_warp.eboat.parts.eboat_parts"), (5, "ocean_warp.wamv"), (6, "ocean_warp.eboat")]

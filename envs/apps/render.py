@@ -58,7 +58,7 @@ from .fleet_scenario import checked_task_name, controller_observation, shipped_p
 from ..training.policy_io import load_policy
 
 __all__ = ["RenderConfig", "RenderResult", "FrameHook", "fleet_controller", "chase_camera", "render_run", "route_buoys",
-           "overlook", "render_scene", "video_path_problem", "main"]
+           "overlook", "render_scene", "fleet_scene", "video_path_problem", "main"]
 
 MP4_HINT = 'MP4 needs imageio-ffmpeg: pip install "ocean-warp[video]", or write a .gif'
 
@@ -240,6 +240,13 @@ def _video(path: str, width: int, height: int, fps: int):
         writer.close()
 
 
+def fleet_scene(env, objects=()) -> Scene:
+    """Every boat of ``env`` (a ``SailingEnv``, a ``VrxEnv``: any env with a ``vessel`` and its ``simulator``) in
+    one environment, drawn with the vessel's parts at their joints, with ``objects`` placed from the world
+    origin: what a free camera (``ViewCamera``) over the whole fleet sees."""
+    return Scene.for_simulator(env.simulator, objects, vessel=env.vessel)
+
+
 def render_scene(env: SailingEnv) -> tuple[Scene, np.ndarray]:
     """What the camera sees of ``env`` (just reset: its first episodes), and the course the fixed camera
     overlooks, (P, 2) world [m]. On a task with obstacles: the env's own obstacle scene
@@ -258,7 +265,7 @@ def render_scene(env: SailingEnv) -> tuple[Scene, np.ndarray]:
         corners = np.concatenate([table[:, :2] - table[:, 2:3], table[:, :2] + table[:, 2:3]]) + origins[0]
         return course.scene, np.concatenate([start[None, :], route[0], corners])
     waypoints = None if task.route is not None else route.reshape(-1, 2)
-    return Scene.for_simulator(env.simulator, route_buoys(task, waypoints)), _course_points(task, waypoints)
+    return fleet_scene(env, route_buoys(task, waypoints)), _course_points(task, waypoints)
 
 
 def render_run(config: RenderConfig, out: str | os.PathLike, *, device: str = "cpu", progress: bool = True,

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..contact import boat_capsule
 from ..meshes import concatenate
-from ..vessel import ActionSpec, CollisionShape, VesselPart
+from ..vessel import ActionSpec, CollisionShape, PartScaling, VesselPart
 from .eboat_simulator import EBoatSimulator
 from .parts import BODY, BOOM, REEF, RUDDER, eboat_parts
 from .simulator_config import EBoatSimulatorConfig
@@ -39,17 +39,27 @@ class EBoatVessel:
     def simulator(self, count: int, *, device=None, first_boat: int = 0, ocean=None) -> EBoatSimulator:
         return EBoatSimulator(self.config, count, device=device, ocean=ocean, first_boat=first_boat)
 
-    def parts(self, hull_detail: int = 2) -> tuple[VesselPart, ...]:
-        """Body (hull, keel, mast), the boom's spar and sail on ``boom_angle``, the rudder on ``rudder_angle``."""
+    def parts(self, hull_detail: int = 2, *, rudder: bool = True) -> tuple[VesselPart, ...]:
+        """Body (hull, keel, mast), the boom's spar and sail on ``boom_angle``, the rudder on ``rudder_angle``
+        (``rudder`` False: without it, the parts the sensors saw before the vessel seam); the hull lofted at
+        ``hull_detail`` (1: the physics mesh)."""
         meshes = eboat_parts(self.config.boat, hull_detail=hull_detail)
         boom_pivot = tuple(float(v) for v in meshes.boom_pivot)
-        return (
+        parts = (
             VesselPart(BODY, concatenate(meshes.hull, meshes.keel, meshes.mast)),
             VesselPart(BOOM, meshes.spar, joint="boom_angle", pivot=boom_pivot, material="metal"),
             VesselPart(REEF, meshes.sail, joint="boom_angle", pivot=boom_pivot, material="sail"),
-            VesselPart(RUDDER, meshes.blade, joint="rudder_angle",
-                       pivot=tuple(float(v) for v in meshes.rudder_pivot), material="foil"),
         )
+        if rudder:
+            parts += (VesselPart(RUDDER, meshes.blade, joint="rudder_angle",
+                                 pivot=tuple(float(v) for v in meshes.rudder_pivot), material="foil"),)
+        return parts
+
+    def part_scaling(self) -> PartScaling:
+        """The sail (``REEF``) drawn at each boat's reef: scaled by ``reef_scales[reef_level]`` about its tack."""
+        tack = eboat_parts(self.config.boat, hull_detail=1).sail_tack
+        return PartScaling((REEF,), "reef_level", tuple(float(s) for s in self.config.boat.reef_scales),
+                           tuple(float(v) for v in tack))
 
     def collision_shape(self) -> CollisionShape:
         """The capsule of the physics hull (half beam radius, spanning its length)."""

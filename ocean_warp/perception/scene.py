@@ -21,8 +21,6 @@ import numpy as np
 import warp as wp
 
 from ..device_structs import struct_from
-from ..eboat.eboat import EBoatConfig
-from ..eboat.parts import eboat_parts
 from ..kernels.ray_cast import (
     SHAPE_CYLINDER,
     SHAPE_MESH,
@@ -34,11 +32,15 @@ from ..kernels.ray_cast import (
     water_band,
 )
 from ..mesh_files import read_mesh_file
-from ..meshes import MeshData, concatenate
+from ..meshes import MeshData
 from ..ocean import Ocean
 from ..validation import require_finite, require_positive
+from ..vessel import PartScaling, VesselPart, part_scaling, require_vessel
 
 __all__ = ["Shape", "SceneObject", "Scene", "PARKED_DEPTH"]
+
+JOINT_ARRAYS = 3
+"""How many distinct joint state arrays a scene's vessel may turn its parts with (``SceneView.joint_0..2``)."""
 
 PARKED_DEPTH = 1000.0
 """How far below its environment's origin an empty object row is parked [m] (``Scene.free_slots``)."""
@@ -146,16 +148,24 @@ class Scene:
         ocean: the sea (its current fields are what rays see; :meth:`refresh` after it changes).
         envs: number of environments.
         boat_env: (B,) the environment of each boat (-1: not drawn).
-        boat_position, boat_orientation, boom_angle: the boats' (B,) Warp arrays (vec3 [m], quat, [rad]),
-            read by every cast (bound, not copied).
-        reef_level: the boats' (B,) int32 Warp array of reef levels (``EBoatState.reef_level``), bound too: each
-            sail is drawn scaled about its tack by its level's factor (``boat.reef_scales``); None: the full
-            sail on every boat.
+        boat_position, boat_orientation: the boats' (B,) Warp arrays (vec3 [m], quat), read by every cast (bound,
+            not copied).
+        parts: the :class:`~ocean_warp.vessel.VesselPart` s every boat is drawn with (``Vessel.parts()``); None:
+            the E-Boat of ``boat`` (default V-C) as the sensors have always seen it (hull, keel and mast at the
+            physics hull's detail, boom and sail; no rudder).
+        joints: the boats' joint state arrays by name (``{"thruster_angle": state.thruster_angle}``: (B,) or
+            (B, C) float32 Warp arrays [rad], bound too), one for each ``joint`` of ``parts``.
+        boom_angle: the E-Boat's (B,) boom angles [rad], the same as ``joints={"boom_angle": boom_angle}``.
+        scaling: which parts are drawn at a size of each boat's own (``Vessel.part_scaling()``; None: the E-Boat
+            sail's reef without ``parts``, else none).
+        reef_level: the boats' (B,) int32 Warp array of levels of ``scaling`` (``EBoatState.reef_level``), bound
+            too: each scaled part is drawn scaled about its origin by its level's factor; None: level 0 on every
+            boat.
         objects: one sequence of :class:`SceneObject` for every environment (placed from each origin), or
             a sequence of ``envs`` such sequences, one per environment.
         origins: (envs, 3) world origin of each environment [m] (default: all at 0).
         water_visible: whether rays see the sea.
-        boat: the E-Boat whose parts are drawn (default V-C).
+        boat: the ``EBoatConfig`` whose parts are drawn when ``parts`` is None (default V-C).
         free_slots: rows each environment keeps after its objects for objects placed on the device later
             (an obstacle layout drawn at every reset: ``ocean_warp.envs.tasks.obstacle_course``). A free slot
             holds nothing until a kernel writes it: a sphere of radius 0 parked ``PARKED_DEPTH`` below its
@@ -163,8 +173,10 @@ class Scene:
     """
 
     def __init__(self, ocean: Ocean, *, envs: int, boat_env, boat_position: wp.array, boat_orientation: wp.array,
-                 boom_angle: wp.array, objects: Sequence = (), origins=None, water_visible: bool = True,
-                 boat: EBoatConfig | None = None, free_slots: int = 0, reef_level: wp.array | None = None):
+                 boom_angle: wp.array | None = None, objects: Sequence = (), origins=None, water_visible: bool = True,
+                 boat=None, free_slots: int = 0, reef_level: wp.array | None = None,
+                 parts: Sequence[VesselPart] | None = None, joints: dict | None = None,
+                 scaling: PartScaling | None = None):
         if not isinstance(ocean, Ocean):
             raise ValueError(f"Scene: ocean must be an ocean_warp Ocean, got {type(ocean).__name__}")
         if isinstance(envs, bool) or not isinstance(envs, int) or envs < 1:
@@ -187,29 +199,32 @@ class Scene:
         self.boat_env = boat_env.copy()
         """(B,) int64 numpy: the environment each boat is drawn in (-1: not drawn)."""
 
-        boat = boat if boat is not None else EBoatConfig()
-        parts = eboat_parts(boat, hull_detail=1)
-        body, boom = concatenate(parts.hull, parts.keel, parts.mast), concatenate(parts.spar, parts.sail)
-        self._meshes = [_wp_mesh(body, device), _wp_mesh(parts.spar, device),
-                        _wp_mesh(parts.sail_in_tack_frame(), device)]
+        count = boat_position.shape[0]
+        joints = dict(joints or {})
+        if boom_angle is not None:
+            joints["boom_angle"] = boom_angle
+        if parts is None:
+            parts, default_scaling = _eboat_parts(boat)
+            scaling = scaling if scaling is not None else default_scaling
+        boat_parts = _PartTable(parts, joints, scaling, count, device)
+        self._meshes = list(boat_parts.meshes)
         if reef_level is None:
-            reef_level = wp.zeros(boat_position.shape[0], dtype=int, device=device)
-        elif reef_level.shape[0] != boat_position.shape[0]:
-            raise ValueError(f"Scene.reef_level must hold one level for each of the {boat_position.shape[0]} boats, "
+            reef_level = wp.zeros(count, dtype=int, device=device)
+        elif reef_level.shape[0] != count:
+            raise ValueError(f"Scene.reef_level must hold one level for each of the {count} boats, "
                              f"got {reef_level.shape[0]}")
         self.reef_level = reef_level
-        """(B,) int32: each boat's reef level (bound, not copied); its sail is drawn at ``reef_scale[level]``."""
-        self.reef_scale = wp.array(np.array(boat.reef_scales, dtype=np.float32), dtype=float, device=device)
-        """(levels,) the linear factor on the sail of each reef level (``EBoatConfig.reef_scales``)."""
-        boat_bound = max(float(np.linalg.norm(body.points, axis=1).max()),
-                         float(np.linalg.norm(parts.boom_pivot)) + float(np.linalg.norm(boom.points, axis=1).max()))
+        """(B,) int32: each boat's level of its scaled parts (bound, not copied), e.g. the E-Boat's reef."""
+        self.reef_scale = wp.array(np.array(boat_parts.scales, dtype=np.float32), dtype=float, device=device)
+        """(levels,) the linear factor on the scaled parts of each level (``PartScaling.scales``; [1]: none)."""
+        self.parts = tuple(parts)
+        """The vessel's parts every boat is drawn with."""
 
         flat = [(env, item) for env in range(envs) for item in per_env[env] + [None] * free_slots]
         mesh_ids: dict[int, wp.Mesh] = {}
         for _, item in flat:
             if item is not None and item.shape is Shape.MESH and id(item.mesh) not in mesh_ids:
                 mesh_ids[id(item.mesh)] = _wp_mesh(item.mesh, device)
-        boat_meshes = self._meshes[:3]
         self._meshes += list(mesh_ids.values())
         count = max(len(flat), 1)  # Warp arrays of length 0 cannot be read; a dummy row is never cast against
         anchor = np.zeros((count, 3), np.float32)
@@ -259,10 +274,8 @@ class Scene:
             object_size=array(rows["size"], wp.vec3), object_mesh=array(rows["mesh"], wp.uint64),
             object_bound=array(rows["bound"], float), object_color=array(rows["color"], wp.vec3),
             boat_start=array(boat_start, int), boat_list=array(order.astype(np.int32), int),
-            boat_position=boat_position, boat_orientation=boat_orientation, boom_angle=boom_angle,
-            reef_level=reef_level, reef_scale=self.reef_scale, body_mesh=boat_meshes[0].id,
-            boom_mesh=boat_meshes[1].id, sail_mesh=boat_meshes[2].id, boom_pivot=wp.vec3(*parts.boom_pivot),
-            sail_tack=wp.vec3(*parts.sail_tack), boat_bound=boat_bound)
+            boat_position=boat_position, boat_orientation=boat_orientation, reef_level=reef_level,
+            reef_scale=self.reef_scale, boat_bound=boat_parts.bound, **boat_parts.view_fields())
         """What the kernels take (:class:`~ocean_warp.kernels.ray_cast.SceneView`)."""
         self._band_start = array(np.array([1.0e30, -1.0e30], np.float32), float)
         self.object_count = len(flat)
@@ -271,21 +284,38 @@ class Scene:
     # --- constructors -------------------------------------------------------------------------------
     @classmethod
     def for_env(cls, env, objects: Sequence = (), *, water_visible: bool = True, free_slots: int = 0) -> Scene:
-        """The scene of a :class:`~ocean_warp.envs.SailingEnv`: environment i holds boat i, its objects are
-        placed from its origin (and ``free_slots`` rows each for objects placed later on the device)."""
-        sim = env.simulator
-        return cls(sim.ocean, envs=env.num_envs, boat_env=np.arange(env.num_envs), boat_position=sim.state.position,
-                   boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=objects,
-                   origins=env.origin.numpy(), water_visible=water_visible, boat=sim.config.boat,
-                   free_slots=free_slots, reef_level=sim.state.reef_level)
+        """The scene of an environment of ``ocean_warp.envs`` (``SailingEnv``, ``VrxEnv``: its ``vessel`` and
+        ``simulator``): environment i holds boat i, its objects are placed from its origin (and ``free_slots``
+        rows each for objects placed later on the device)."""
+        return cls.for_vessel(env.vessel, env.simulator, objects, envs=env.num_envs, boat_env=np.arange(env.num_envs),
+                              origins=env.origin.numpy(), water_visible=water_visible, free_slots=free_slots)
 
     @classmethod
-    def for_simulator(cls, sim, objects: Sequence = (), *, water_visible: bool = True) -> Scene:
-        """One environment with every boat of an :class:`~ocean_warp.eboat.EBoatSimulator` (a fleet that
-        sees itself), its objects placed from the world origin."""
-        return cls(sim.ocean, envs=1, boat_env=np.zeros(sim.count, np.int64), boat_position=sim.state.position,
-                   boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=[objects],
-                   water_visible=water_visible, boat=sim.config.boat, reef_level=sim.state.reef_level)
+    def for_simulator(cls, sim, objects: Sequence = (), *, water_visible: bool = True, vessel=None) -> Scene:
+        """One environment with every boat of a simulator (a fleet that sees itself), its objects placed from the
+        world origin; ``vessel`` the one it simulates (None: an ``EBoatSimulator``'s E-Boat, drawn from its
+        config's boat)."""
+        if vessel is None:
+            return cls(sim.ocean, envs=1, boat_env=np.zeros(sim.count, np.int64), boat_position=sim.state.position,
+                       boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=[objects],
+                       water_visible=water_visible, boat=sim.config.boat, reef_level=sim.state.reef_level)
+        return cls.for_vessel(vessel, sim, [objects], envs=1, boat_env=np.zeros(sim.count, np.int64),
+                              water_visible=water_visible)
+
+    @classmethod
+    def for_vessel(cls, vessel, sim, objects: Sequence = (), **options) -> Scene:
+        """The boats of ``sim``, a simulator of ``vessel`` (any ``ocean_warp.vessel.Vessel``), drawn with its parts
+        posed by its state's joint arrays and scaled per its ``part_scaling()``; ``options``: the constructor's
+        ``envs``, ``boat_env``, ``origins``, ``water_visible`` and ``free_slots``."""
+        vessel = require_vessel("Scene.for_vessel", vessel)
+        parts = vessel.parts()
+        scaling = part_scaling(vessel)
+        joints = {}
+        for name in {part.joint for part in parts if part.joint is not None}:
+            joints[name] = _state_array(vessel, sim, name)
+        level = _state_array(vessel, sim, scaling.level) if scaling is not None else None
+        return cls(sim.ocean, boat_position=sim.state.position, boat_orientation=sim.state.orientation,
+                   objects=objects, parts=parts, joints=joints, scaling=scaling, reef_level=level, **options)
 
     # --- per frame ----------------------------------------------------------------------------------
     def refresh(self) -> None:
@@ -345,3 +375,81 @@ def _objects_per_env(objects: Sequence, envs: int) -> list[list[SceneObject]]:
         return [list(group) for group in items]
     raise ValueError(f"Scene.objects must be SceneObjects (for every environment) or {envs} sequences of them "
                      "(one per environment)")
+
+
+def _state_array(vessel, sim, name: str) -> wp.array:
+    array = getattr(sim.state, name, None)
+    if not isinstance(array, wp.array):
+        raise ValueError(f"Scene: the {vessel.name}'s parts read the state array {name!r}, which its simulator "
+                         f"({type(sim).__name__}) does not have")
+    return array
+
+
+def _eboat_parts(boat) -> tuple[tuple[VesselPart, ...], PartScaling]:
+    """The E-Boat of ``boat`` (an ``EBoatConfig``; None: V-C) as the sensors saw it before the vessel seam."""
+    # The one import of a vessel's module here: the E-Boat is the scene's default boat for callers that
+    # pass its boom angles alone (tests/ocean_warp/perception and the tools built before the seam).
+    from ..eboat.simulator_config import EBoatSimulatorConfig
+    from ..eboat.vessel import EBoatVessel
+
+    config = EBoatSimulatorConfig() if boat is None else EBoatSimulatorConfig(boat=boat)
+    vessel = EBoatVessel(config)
+    return vessel.parts(hull_detail=1, rudder=False), vessel.part_scaling()
+
+
+_LOOKS = {"sail": 1, "metal": 1}
+"""``SceneView.part_look`` of each material the camera draws in a sail's colour (every other: a hull's)."""
+
+
+class _PartTable:
+    """A vessel's parts as the ``SceneView.part_*`` and ``joint_*`` rows, their Warp meshes and the boats'
+    bound."""
+
+    def __init__(self, parts, joints: dict, scaling: PartScaling | None, count: int, device):
+        parts = tuple(parts)
+        if not parts or not all(isinstance(part, VesselPart) for part in parts):
+            raise ValueError(f"Scene.parts must be one or more ocean_warp.vessel.VesselParts, got {parts!r:.120}")
+        scaled = set(scaling.parts) if scaling is not None else set()
+        self.scales = tuple(scaling.scales) if scaling is not None else (1.0,)
+        if not self.scales or not all(math.isfinite(v) and v > 0.0 for v in self.scales):
+            raise ValueError(f"Scene.scaling.scales must be finite factors > 0, got {self.scales!r}")
+        names = list(dict.fromkeys(part.joint for part in parts if part.joint is not None))
+        if len(names) > JOINT_ARRAYS:
+            raise ValueError(f"Scene: a vessel's parts may turn with at most {JOINT_ARRAYS} joint state arrays, got "
+                             f"{len(names)} ({', '.join(names)})")
+        self.joints = []
+        for name in names:
+            array = joints.get(name)
+            if not isinstance(array, wp.array) or array.dtype != wp.float32 or array.ndim not in (1, 2) \
+                    or array.shape[0] != count:
+                raise ValueError(f"Scene.joints[{name!r}] must be a ({count},) or ({count}, C) float32 Warp array "
+                                 f"(the parts turn with it), got {array!r:.80}")
+            self.joints.append(array.reshape((count, 1)) if array.ndim == 1 else array)
+        self.meshes, rows, self.bound = [], [], 0.0
+        for part in parts:
+            origin = np.asarray(scaling.origin if part.name in scaled else (0.0, 0.0, 0.0), dtype=np.float64)
+            points = np.asarray(part.mesh.points, dtype=np.float64) - origin
+            joint = names.index(part.joint) if part.joint is not None else -1
+            if joint >= 0 and not 0 <= part.joint_column < self.joints[joint].shape[1]:
+                raise ValueError(f"Scene: part {part.name!r} reads column {part.joint_column} of {part.joint!r}, "
+                                 f"which has {self.joints[joint].shape[1]}")
+            self.meshes.append(_wp_mesh(MeshData(points, part.mesh.face_counts, part.mesh.face_indices), device))
+            largest = max(self.scales) if part.name in scaled else 1.0
+            self.bound = max(self.bound, float(np.linalg.norm(part.pivot)) + float(np.linalg.norm(origin))
+                             + largest * float(np.linalg.norm(points, axis=1).max()))
+            rows.append((part.pivot, origin, joint, part.joint_column, int(part.name in scaled),
+                         _LOOKS.get(part.material, 0)))
+        self._rows, self._device = rows, device
+
+    def view_fields(self) -> dict:
+        device = self._device
+        pivot, origin, joint, column, scaled, look = zip(*self._rows)
+        unused = wp.zeros((1, 1), dtype=float, device=device)
+        joints = self.joints + [unused] * (JOINT_ARRAYS - len(self.joints))
+        ints = lambda values: wp.array(np.array(values, np.int32), dtype=int, device=device)  # noqa: E731
+        return dict(part_mesh=wp.array(np.array([mesh.id for mesh in self.meshes], np.uint64), dtype=wp.uint64,
+                                       device=device),
+                    part_pivot=wp.array(np.array(pivot, np.float32), dtype=wp.vec3, device=device),
+                    part_origin=wp.array(np.array(origin, np.float32), dtype=wp.vec3, device=device),
+                    part_joint=ints(joint), part_column=ints(column), part_scaled=ints(scaled), part_look=ints(look),
+                    joint_0=joints[0], joint_1=joints[1], joint_2=joints[2])

@@ -77,7 +77,7 @@ __all__ = [
     "GLOBAL_TOPICS",
     "bus_name",
     "SEED_NAMESPACE", "SEED_OBSERVATION", "BOAT_TOPICS", "TF", "TF_STATIC", "CLOCK", "MAP_FRAME", "Message",
-    "BoatSnapshot", "boat_namespace", "frame_id", "snapshot", "stamp", "seed_observation_values",
+    "BoatSnapshot", "boat_namespace", "frame_id", "snapshot", "joint_states", "stamp", "seed_observation_values",
     "EPISODE_TOPIC", "NODE_TOPICS", "EPISODE_END", "episode_messages", "episode_end_reason",
     "state_messages", "command_messages", "lidar_messages", "camera_messages", "static_messages", "clock_message",
     "env_lidar", "TYPES", "FLOAT32", "INT16", "FLOAT32_MULTI_ARRAY", "POINT", "VECTOR3_STAMPED", "NAV_SAT_FIX", "IMU",
@@ -209,7 +209,7 @@ class Message:
 
 
 # --- the state, on the host ------------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, kw_only=True)
 class BoatSnapshot:
     """Host copies (float64 numpy) of what the messages read of an environment's N boats at one time."""
 
@@ -231,36 +231,76 @@ class BoatSnapshot:
     """(N, 16) exact sensor channels (``ocean_warp.CHANNEL_NAMES``)."""
     readings: np.ndarray
     """(N, 16) noisy sensor readings, same columns."""
-    boom_angle: np.ndarray
-    """(N,) [rad], positive to port."""
-    rudder_angle: np.ndarray
-    """(N,) [rad], positive turns to port."""
     propeller_level: np.ndarray
     """(N,) the level the last decision applied."""
     noise_scale: np.ndarray
     """(N,) each boat's factor on its sensors' noise."""
     sensor_std: np.ndarray
     """(16,) each channel's configured noise standard deviation (in its unit)."""
+    joint_names: tuple[str, ...] = ()
+    """The vessel's joints, as a ``sensor_msgs/JointState`` names them (:func:`joint_states`): ``boom_angle`` and
+    ``rudder_angle`` of the E-Boat, ``thruster_angle_0`` and ``_1`` of the WAM-V."""
+    joint_angles: np.ndarray | None = None
+    """(N, J) each boat's angle of each joint [rad], positive to port (a part turns by minus it about its z)."""
+    boom_angle: dataclasses.InitVar[np.ndarray | None] = None
+    """(N,) [rad]: a joint ``boom_angle`` given by name (added to the joints)."""
+    rudder_angle: dataclasses.InitVar[np.ndarray | None] = None
+    """(N,) [rad]: a joint ``rudder_angle`` given by name (added to the joints)."""
+
+    def __post_init__(self, boom_angle, rudder_angle):
+        names = tuple(self.joint_names)
+        angles = np.zeros((self.count, 0)) if self.joint_angles is None \
+            else np.asarray(self.joint_angles, dtype=np.float64).reshape(self.count, len(names))
+        for name, value in (("boom_angle", boom_angle), ("rudder_angle", rudder_angle)):
+            if value is not None and name not in names:
+                names += (name,)
+                angles = np.column_stack([angles, np.asarray(value, dtype=np.float64).reshape(-1)])
+        object.__setattr__(self, "joint_names", names)
+        object.__setattr__(self, "joint_angles", angles)
 
     @property
     def count(self) -> int:
         return self.position.shape[0]
 
+    def joint(self, name: str) -> np.ndarray:
+        """(N,) every boat's angle of joint ``name`` [rad]; NaN where the vessel has no such joint."""
+        if name in self.joint_names:
+            return self.joint_angles[:, self.joint_names.index(name)]
+        return np.full(self.count, np.nan)
+
+
+def joint_states(vessel, state) -> tuple[tuple[str, ...], np.ndarray]:
+    """(names, (N, J) angles [rad]) of the joints of ``vessel``'s parts (``VesselPart.joint``) read from the
+    simulator ``state``: a 1-D state array is one joint under its own name, column k of a 2-D one is
+    ``<name>_<k>``; in the order the parts first name them."""
+    names, columns = [], []
+    for part in vessel.parts():
+        if part.joint is None:
+            continue
+        values = np.asarray(getattr(state, part.joint).numpy(), dtype=np.float64)
+        name = part.joint if values.ndim == 1 else f"{part.joint}_{part.joint_column}"
+        if name not in names:
+            names.append(name)
+            columns.append(values if values.ndim == 1 else values[:, part.joint_column])
+    count = state.position.shape[0]
+    return tuple(names), (np.column_stack(columns) if columns else np.zeros((count, 0)))
+
 
 def snapshot(env, time_offset_ns: int = 0) -> BoatSnapshot:
-    """The state of ``env`` (a :class:`~ocean_warp.envs.SailingEnv`) now: after ``env.step()`` the boats as the
-    next decision sees them (environments that ended already restarted), at the simulator's clock plus
-    ``time_offset_ns`` (what a log or node adds to keep its time running on across resets)."""
+    """The state of ``env`` (a ``SailingEnv``, a ``VrxEnv``: its ``vessel`` and ``simulator``) now: after
+    ``env.step()`` the boats as the next decision sees them (environments that ended already restarted), at the
+    simulator's clock plus ``time_offset_ns`` (what a log or node adds to keep its time running on across resets);
+    the vessel's common state and its joints (:func:`joint_states`)."""
     state = env.simulator.state
     host = lambda array: np.asarray(array.numpy(), dtype=np.float64)  # noqa: E731
     orientation = host(state.orientation)
     orientation /= np.linalg.norm(orientation, axis=1, keepdims=True)
+    joint_names, joint_angles = joint_states(env.vessel, state)
     return BoatSnapshot(
         time_ns=int(round(float(state.time.numpy()[0]) * 1e9)) + int(time_offset_ns), position=host(state.position),
         orientation=orientation, velocity=host(state.velocity), target=host(env.target_world),
         wind_velocity=host(state.wind_velocity), current_velocity=host(state.current_velocity),
-        truth=host(state.truth), readings=host(state.readings),
-        boom_angle=host(state.boom_angle), rudder_angle=host(state.rudder_angle),
+        truth=host(state.truth), readings=host(state.readings), joint_names=joint_names, joint_angles=joint_angles,
         propeller_level=host(env.propeller_level), noise_scale=host(state.noise_scale),
         sensor_std=np.asarray(env.simulator.sensors.config.channel_noise(), dtype=np.float64))
 
@@ -276,8 +316,8 @@ def seed_observation_values(s: BoatSnapshot) -> np.ndarray:
     to_target = s.target[:, :2] - s.position[:, :2]
     bearing = np.degrees(np.arctan2(to_target[:, 1], to_target[:, 0]) - attitude[:, 2])
     return np.column_stack([np.hypot(to_target[:, 0], to_target[:, 1]), _wrap_degrees(bearing), s.velocity[:, 0],
-                            s.truth[:, 14], np.degrees(s.truth[:, 13]), np.degrees(s.boom_angle),
-                            np.degrees(s.rudder_angle), s.propeller_level, np.degrees(attitude[:, 0])])
+                            s.truth[:, 14], np.degrees(s.truth[:, 13]), np.degrees(s.joint("boom_angle")),
+                            np.degrees(s.joint("rudder_angle")), s.propeller_level, np.degrees(attitude[:, 0])])
 
 
 def state_messages(s: BoatSnapshot, *, prefix: str = "", datum: GeodeticDatum = GUANABARA_BAY) -> list[Message]:

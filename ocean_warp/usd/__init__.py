@@ -29,12 +29,13 @@ _PUBLIC = {
     "BoatParts": "..eboat.parts", "eboat_parts": "..eboat.parts", "OceanLattice": "ocean_mesh",
     "render_preview": "preview", "INSTANCING_THRESHOLD": "recorder", "TIME_CODES_PER_SECOND": "playback",
     "StageRecorder": "recorder", "loop_path_for": "recorder", "record_eboat": "recorder",
+    "record_vessel": "recorder",
     "write_ocean_loop": "recorder", "check_stage_path": "stage_file", "FleetDrawing": "stage_options",
     "OceanDrawing": "stage_options", "RouteDrawing": "stage_options", "WindArrow": "stage_options",
     "validate_stage": "stage_validation",
 }
 
-__all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "validate_stage", "render_preview",
+__all__ = ["StageRecorder", "record_eboat", "record_vessel", "write_ocean_loop", "validate_stage", "render_preview",
            "OceanLattice", "BoatParts", "eboat_parts", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
            "loop_path_for", "check_stage_path", "OceanDrawing", "FleetDrawing", "RouteDrawing", "WindArrow"]
 

@@ -23,11 +23,12 @@ Quaternions on the way in are Warp's (x, y, z, w), body (FLU) -> world (ENU).
 from __future__ import annotations
 
 import numpy as np
-from pxr import Gf, Kind, Sdf, Usd, UsdGeom, Vt
+from pxr import Gf, Sdf, UsdGeom, Vt
 
 from ..eboat.parts import BODY, BOOM, REEF, RUDDER, BoatParts
 from .materials import HULL_PALETTE, Look, LOOKS_BY_NAME, bind_look, define_look, hull_look_name
-from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, boat_path
+from .paths import FLEET, boat_path
+from .vessel_prims import define_boat_prim, define_fleet_prim, set_boat_pose
 
 __all__ = ["PrimFleetWriter", "InstancedFleetWriter", "quaternion_multiply", "quaternion_rotate", "about_z"]
 
@@ -59,13 +60,6 @@ def about_z(angle: np.ndarray) -> np.ndarray:
     return np.stack([zeros, zeros, np.sin(half), np.cos(half)], axis=-1)
 
 
-def _fleet_prim(stage, count: int):
-    fleet = UsdGeom.Xform.Define(stage, FLEET)
-    fleet.GetPrim().CreateAttribute(BOAT_COUNT_ATTRIBUTE, Sdf.ValueTypeNames.Int, custom=True).Set(int(count))
-    Usd.ModelAPI(fleet.GetPrim()).SetKind(Kind.Tokens.assembly)
-    return fleet
-
-
 def _paint_hull(stage, boat: str, index: int) -> None:
     """Give the hull of the boat at path ``boat`` colour ``index`` of HULL_PALETTE: an override of the
     prototype's material binding and displayColor on this boat's own hull (entry 0 is the prototype's)."""
@@ -83,13 +77,10 @@ class PrimFleetWriter:
     Body, Boom and Rudder groups by name)."""
 
     def __init__(self, stage, count: int, prototype: dict[str, str], parts: BoatParts):
-        _fleet_prim(stage, count)
+        define_fleet_prim(stage, count)
         self._pose, self._boom, self._rudder, self._reef = [], [], [], []
         for i in range(count):
-            boat = UsdGeom.Xform.Define(stage, boat_path(i))
-            Usd.ModelAPI(boat.GetPrim()).SetKind(Kind.Tokens.component)
-            self._pose.append((boat.AddTranslateOp(UsdGeom.XformOp.PrecisionDouble),
-                               boat.AddOrientOp(UsdGeom.XformOp.PrecisionFloat)))
+            self._pose.append(define_boat_prim(stage, i))
             body = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{BODY}")
             body.GetPrim().GetReferences().AddInternalReference(prototype[BODY])
             for name, pivot, ops in ((BOOM, parts.boom_pivot, self._boom), (RUDDER, parts.rudder_pivot, self._rudder)):
@@ -111,11 +102,8 @@ class PrimFleetWriter:
         rudder_degrees = 0.0 - np.degrees(rudder_angles)
         scales = np.ones(len(self._pose)) if sail_scales is None else np.asarray(sail_scales, dtype=np.float64)
         with Sdf.ChangeBlock():
-            for i, (translate, orient) in enumerate(self._pose):
-                x, y, z = map(float, positions[i])
-                qx, qy, qz, qw = map(float, orientations[i])
-                translate.Set(Gf.Vec3d(x, y, z), time_code)
-                orient.Set(Gf.Quatf(qw, qx, qy, qz), time_code)
+            for i, ops in enumerate(self._pose):
+                set_boat_pose(ops, positions[i], orientations[i], time_code)
                 self._boom[i].Set(float(boom_degrees[i]), time_code)
                 self._rudder[i].Set(float(rudder_degrees[i]), time_code)
                 self._reef[i].Set(Gf.Vec3f(*(3 * (float(scales[i]),))), time_code)
@@ -127,7 +115,7 @@ class InstancedFleetWriter:
     boat."""
 
     def __init__(self, stage, count: int, prototype: dict[str, str], parts: BoatParts):
-        _fleet_prim(stage, count)
+        define_fleet_prim(stage, count)
         self.parts = parts
         self.count = count
         self._attributes = {}

@@ -44,10 +44,11 @@ from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST
 from .stage_file import StageFile
 from .scene_prims import LidarPointsWriter, ObjectsWriter
 from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow, _require_loop
+from .vessel_prims import VesselFleetWriter, define_vessel_prototype, vessel_prototype_path
 from .view import define_camera, define_lights
 
-__all__ = ["StageRecorder", "record_eboat", "write_ocean_loop", "INSTANCING_THRESHOLD", "TIME_CODES_PER_SECOND",
-           "loop_path_for"]
+__all__ = ["StageRecorder", "record_eboat", "record_vessel", "write_ocean_loop", "INSTANCING_THRESHOLD",
+           "TIME_CODES_PER_SECOND", "loop_path_for"]
 
 INSTANCING_THRESHOLD = 64
 """Fleets larger than this are written as point instancers unless ``FleetDrawing.instanced`` says otherwise."""
@@ -213,7 +214,13 @@ class StageRecorder:
             stage = self._file.stage
             stage.CreateClassPrim(LIBRARY)
             self._fleet = None
-            if self.boats:
+            self.vessel = fleet.vessel
+            if self.boats and self.vessel is not None:
+                self.instanced = False
+                parts = self.vessel.parts()
+                prototype = define_vessel_prototype(stage, vessel_prototype_path(self.vessel), parts)
+                self._fleet = VesselFleetWriter(stage, self.boats, prototype, parts)
+            elif self.boats:
                 parts = eboat_parts(fleet.boat)
                 prototype = define_boat_prototype(stage, BOAT_PROTOTYPE, parts)
                 layout = InstancedFleetWriter if self.instanced else PrimFleetWriter
@@ -249,6 +256,19 @@ class StageRecorder:
                                         speed=float(simulator.state.wind_mean_speed.numpy()[0]))
         return cls(path, fps=fps, **options)
 
+    @classmethod
+    def for_vessel(cls, path, vessel, simulator, *, fps: float, **options) -> "StageRecorder":
+        """A recorder for ``simulator``, a simulator of ``vessel`` (any ``ocean_warp.vessel.Vessel``):
+        ``ocean=OceanDrawing(simulator.ocean)``, ``fleet=FleetDrawing(simulator.count, vessel=vessel)`` and a
+        ``WindArrow`` of its first boat's mean wind, unless ``options`` give them; frames with
+        :func:`record_vessel`."""
+        options.setdefault("ocean", OceanDrawing(simulator.ocean))
+        options.setdefault("fleet", FleetDrawing(simulator.count, vessel=vessel))
+        if "wind" not in options:
+            options["wind"] = WindArrow(float(simulator.state.wind_mean_direction.numpy()[0]),
+                                        speed=float(simulator.state.wind_mean_speed.numpy()[0]))
+        return cls(path, fps=fps, **options)
+
     @property
     def path(self) -> str:
         """Where the stage will be."""
@@ -268,7 +288,7 @@ class StageRecorder:
         return float(nearest) if abs(code - nearest) < 1e-6 else code
 
     def record(self, time_s: float, positions=None, orientations=None, boom_angles=None, rudder_angles=None, *,
-               object_poses=None, lidar_points=None, sail_scales=None) -> None:
+               object_poses=None, lidar_points=None, sail_scales=None, joints=None) -> None:
         """Add the frame at time ``time_s`` [s] (later than the last one): the boats' positions (N, 3) [m],
         orientations (N, 4) (x, y, z, w, body -> world; normalised here), boom and rudder angles (N,) [rad]
         (positive to port; None: 0), each sail's linear scale about its tack ``sail_scales`` (N,) in (0, 1]
@@ -277,7 +297,9 @@ class StageRecorder:
         arrays, lists or torch tensors. With ``objects``: ``object_poses`` = (positions (M, 3) [m],
         orientations (M, 4)) of every object (``Scene.view.object_position`` / ``object_orientation``), of
         which the floating ones are sampled (None: they stay where they were). With ``lidar``:
-        ``lidar_points`` (P, 3) [m], the frame's returns (NaN rows: no return)."""
+        ``lidar_points`` (P, 3) [m], the frame's returns (NaN rows: no return). With ``FleetDrawing(vessel=...)``:
+        ``joints`` instead of the E-Boat's angles and scales, each jointed part's state array by name ((N,) or
+        (N, C) [rad], ``{"thruster_angle": ...}``; :func:`record_vessel` reads them from a simulator)."""
         owner = "StageRecorder.record"
         if self._file.closed:
             raise ValueError(f"{owner}: the recorder is closed")
@@ -288,7 +310,17 @@ class StageRecorder:
         if self.last_time_code is not None and code <= self.last_time_code:
             raise ValueError(f"{owner}: time_s must increase from frame to frame, got {time_s!r} s (time code {code}) "
                              f"after time code {self.last_time_code}")
-        boats = self._boat_frame(owner, positions, orientations, boom_angles, rudder_angles, sail_scales)
+        if self.vessel is not None:
+            if any(value is not None for value in (boom_angles, rudder_angles, sail_scales)):
+                raise ValueError(f"{owner}: the {self.vessel.name}'s parts turn with joints=..., not boom_angles, "
+                                 "rudder_angles or sail_scales")
+            boats = self._boat_frame(owner, positions, orientations, None, None)
+            boats = boats and (boats[0], boats[1], self._joint_frame(owner, joints))
+        else:
+            if joints is not None:
+                raise ValueError(f"{owner}: joints are for a FleetDrawing(vessel=...); the E-Boat's are boom_angles "
+                                 "and rudder_angles")
+            boats = self._boat_frame(owner, positions, orientations, boom_angles, rudder_angles, sail_scales)
         try:
             if self.first_time_code is None:
                 self._start(boats[0] if boats is not None else None, code)
@@ -345,6 +377,25 @@ class StageRecorder:
                              f"{scales.min()} to {scales.max()}")
         return (where, rotation / norm, rows("boom_angles", boom_angles, None, 0.0),
                 rows("rudder_angles", rudder_angles, None, 0.0), scales)
+
+    def _joint_frame(self, owner, joints) -> dict:
+        """The joint arrays the vessel's parts turn with, as float64, checked."""
+        joints = dict(joints or {})
+        frame = {}
+        for name, column in self._fleet.joints:
+            value = joints.get(name)
+            if value is None:
+                raise ValueError(f"{owner}: joints[{name!r}] is required (the {self.vessel.name}'s parts turn with it)")
+            if hasattr(value, "detach"):
+                value = value.detach().cpu().numpy()
+            array = np.asarray(value, dtype=np.float64)
+            if array.shape[:1] != (self.boats,) or array.ndim > 2 or (array.ndim == 2 and column >= array.shape[1]):
+                raise ValueError(f"{owner}: joints[{name!r}] must have shape ({self.boats},) or ({self.boats}, C) "
+                                 f"with column {column}, got {array.shape}")
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"{owner}: joints[{name!r}] holds NaN or infinite values")
+            frame[name] = array
+        return frame
 
     def _start(self, positions: np.ndarray | None, code: float) -> None:
         """At the first frame: fix the ocean's extent and lattice, and the wind arrow's place."""
@@ -507,3 +558,17 @@ def record_eboat(recorder: StageRecorder, simulator, time_s: float | None = None
     state = simulator.state
     recorder.record(simulator.time if time_s is None else time_s, state.position.numpy(), state.orientation.numpy(),
                     state.boom_angle.numpy(), state.rudder_angle.numpy(), sail_scales=simulator.sail_scales())
+
+
+def record_vessel(recorder: StageRecorder, simulator, time_s: float | None = None) -> None:
+    """Add the current state of ``simulator`` (of the recorder's ``FleetDrawing.vessel``) as a frame at ``time_s``
+    [s] (default: the simulator's clock, ``state.time``): positions, orientations and every joint state array
+    its vessel's parts turn with, one host copy of each."""
+    if recorder.vessel is None:
+        raise ValueError("record_vessel: the recorder draws E-Boats (FleetDrawing without a vessel); use "
+                         "record_eboat")
+    state = simulator.state
+    names = {part.joint for part in recorder.vessel.parts() if part.joint is not None}
+    joints = {name: getattr(state, name).numpy() for name in names}
+    time_s = float(state.time.numpy()[0]) if time_s is None else time_s
+    recorder.record(time_s, state.position.numpy(), state.orientation.numpy(), joints=joints)

@@ -15,12 +15,14 @@ Example::
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import numpy as np
 
 from ..eboat.eboat import EBoatConfig
 from ..ocean import Ocean
 from ..validation import require_finite, require_int_in_range, require_non_negative
+from ..vessel import require_vessel
 from .ocean_mesh import check_extent
 
 __all__ = ["OceanDrawing", "FleetDrawing", "RouteDrawing", "WindArrow"]
@@ -115,6 +117,10 @@ class FleetDrawing:
     boat: EBoatConfig | None = None
     """The :class:`~ocean_warp.eboat.eboat.EBoatConfig` whose dimensions the boats are drawn with (None:
     the default, V-C)."""
+    vessel: Any = None
+    """Any :class:`~ocean_warp.vessel.Vessel` (the WAM-V...), drawn one prim per boat with one child per part
+    (``ocean_warp.usd.vessel_prims``; ``instanced`` and ``boat`` must then be left None); None: E-Boats of
+    ``boat``."""
 
     def __post_init__(self):
         owner = type(self).__name__
@@ -123,6 +129,11 @@ class FleetDrawing:
             raise ValueError(f"{owner}.instanced must be True, False or None, got {self.instanced!r}")
         if self.boat is not None and not isinstance(self.boat, EBoatConfig):
             raise ValueError(f"{owner}.boat must be an EBoatConfig or None, got {type(self.boat).__name__}")
+        if self.vessel is not None:
+            require_vessel(f"{owner}.vessel", self.vessel)
+            if self.instanced or self.boat is not None:
+                raise ValueError(f"{owner}: a vessel is drawn one prim per boat from its own parts; leave instanced "
+                                 f"and boat None, got instanced={self.instanced!r}, boat={self.boat!r}")
 
 
 @dataclasses.dataclass(frozen=True)

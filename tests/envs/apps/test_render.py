@@ -225,3 +225,61 @@ def test_the_rendered_boats_carry_their_reef(task):
     assert scene.view.reef_level.ptr == env.simulator.state.reef_level.ptr
     np.testing.assert_allclose(scene.view.reef_scale.numpy(), np.sqrt(np.array([3.188, 2.0, 1.15]) / 3.188),
                                rtol=1e-6)
+
+
+# --- any vessel: a frame of VRX's WAM-Vs ------------------------------------------------------------------
+
+def project(point, eye, target, width: int, height: int, fov: float) -> tuple[int, int]:
+    """(row, column) of the pixel that sees ``point`` from a level pinhole camera at ``eye`` looking at ``target``
+    (horizontal field of view ``fov`` [rad], image x right and rows down), numpy."""
+    forward = np.subtract(target, eye) / np.linalg.norm(np.subtract(target, eye))
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    offset = np.subtract(point, eye)
+    depth = offset @ forward
+    focal = 0.5 * width / np.tan(0.5 * fov)
+    return (int(round(0.5 * height - 0.5 - focal * (offset @ up) / depth)),
+            int(round(0.5 * width - 0.5 + focal * (offset @ right) / depth)))
+
+
+def test_a_frame_of_two_wamvs_shows_them_where_they_are():
+    """The fleet scene of a VrxEnv of 2 WAM-Vs: from 12 m astern and 7 m above each boat, the pixels that see the
+    tops of its pontoons (projected with numpy from the env's buffers) differ from the same view without boats,
+    and see something at the distance of the pontoon; far from the boats the two pictures agree."""
+    from ocean_warp.envs.vrx import VrxEnv, VrxTaskConfig
+    from ocean_warp.frames import quaternion_from_roll_pitch_yaw
+    from ocean_warp.perception.camera import ViewCamera
+    from ocean_warp.perception.scene import Scene
+    from ocean_warp.wamv import Wamv
+
+    vessel = Wamv()
+    env = VrxEnv(VrxTaskConfig(kind="wayfinding", goals=2, vessel=vessel), 2, device="cpu", seed=3)
+    scene = render.fleet_scene(env)
+    empty = Scene.for_vessel(vessel, env.simulator, [[]], envs=1, boat_env=np.full(2, -1))
+    width, height, fov = 48, 36, np.radians(50.0)
+    boat = vessel.config.boat
+    position = env.buffers.position.cpu().numpy().astype(np.float64)
+    orientation = env.buffers.orientation.cpu().numpy().astype(np.float64)
+    for i in range(2):
+        x, y, z, w = orientation[i]
+        heading = np.arctan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+        astern = np.array([np.cos(heading), np.sin(heading), 0.0])
+        eye = position[i] - 12.0 * astern + (0.0, 0.0, 7.0)
+        pictures = []
+        for seen in (scene, empty):
+            camera = ViewCamera(seen, width, height, fov, env=0)
+            camera.look_at(eye, position[i])
+            camera.render()
+            pictures.append((camera.image().astype(int), camera.depth_image()))
+        (boats, boats_depth), (water, _) = pictures
+        level = quaternion_from_roll_pitch_yaw(np.array([[0.0, 0.0, heading]]))[0]
+        assert np.allclose(np.abs(level @ orientation[i]), 1.0, atol=0.05)  # the boat floats nearly level
+        for side in (1.0, -1.0):
+            top = np.array([boat.pontoon_center_x, side * 0.5 * boat.pontoon_spacing, boat.pontoon_radius])
+            top = position[i] + top[0] * astern + top[1] * np.array([-astern[1], astern[0], 0.0]) + (0, 0, top[2])
+            row, column = project(top, eye, position[i], width, height, fov)
+            assert np.abs(boats[row, column] - water[row, column]).max() > 20, (i, side)
+            window = (slice(row - 1, row + 2), slice(column - 1, column + 2))  # a pontoon is about a pixel wide
+            assert np.min(np.abs(boats_depth[window] - np.linalg.norm(top - eye))) < 0.5
+        assert np.array_equal(boats[0, :], water[0, :])  # the top row: sky and far sea, no boat

@@ -1,0 +1,81 @@
+"""A stage of any vessel: a VrxEnv of WAM-Vs recorded decision by decision holds each boat's parts (one prim per
+part of ``Vessel.parts()``), and USD's world transform of each part's mesh puts it where the env's buffers
+(poses) and the simulator's thruster angles do, worked out with scipy's rotations."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import torch
+from scipy.spatial.transform import Rotation
+
+pytest.importorskip("pxr", reason="USD tests need usd-core (pip install usd-core)")
+from pxr import Usd, UsdGeom  # noqa: E402
+
+from ocean_warp.envs.vrx import VrxEnv, VrxTaskConfig  # noqa: E402
+from ocean_warp.usd import FleetDrawing, StageRecorder, record_vessel, validate_stage  # noqa: E402
+from ocean_warp.wamv import Wamv, WamvConfig, WamvSimulatorConfig  # noqa: E402
+from ocean_warp.wamv.config import ThrusterLayout  # noqa: E402
+
+PARTS = ("pontoons", "frame", "left_thruster", "right_thruster")
+"""The WAM-V's parts as the stage names them."""
+
+
+def test_a_stage_of_two_wamvs_follows_the_simulated_poses(tmp_path, rng):
+    vessel = Wamv(WamvSimulatorConfig(boat=WamvConfig(thrusters=ThrusterLayout.AZIMUTH)))
+    env = VrxEnv(VrxTaskConfig(kind="wayfinding", goals=2, vessel=vessel), 2, device="cpu",
+                 seed=int(rng.integers(1 << 30)))
+    path = tmp_path / "wamv.usda"
+    frames = []
+    with StageRecorder.for_vessel(path, vessel, env.simulator, fps=2.0, ocean=None, wind=None) as recorder:
+        for _ in range(3):
+            env.step(torch.as_tensor(rng.uniform(-1, 1, (2, env.num_actions)), dtype=torch.float32,
+                                     device=env.torch_device))
+            record_vessel(recorder, env.simulator)
+            frames.append(dict(code=recorder.last_time_code,
+                               position=env.buffers.position.cpu().numpy().astype(np.float64),
+                               orientation=env.buffers.orientation.cpu().numpy().astype(np.float64),
+                               angle=env.simulator.state.thruster_angle.numpy().astype(np.float64)))
+    assert validate_stage(str(path)) == []
+    assert np.any(np.abs(frames[-1]["angle"]) > 1e-3)  # the thrusters turned: the joints are exercised
+    stage = Usd.Stage.Open(str(path))
+    parts = {part.name: part for part in vessel.parts()}
+    for name in PARTS:
+        local = np.array(UsdGeom.Mesh.Get(stage, f"/Library/WAM_V/{name}/Mesh").GetPointsAttr().Get(), np.float64)
+        np.testing.assert_allclose(local, parts[name].mesh.points, atol=1e-6)
+    for frame in frames:
+        cache = UsdGeom.XformCache(frame["code"])
+        for boat in range(2):
+            assert sorted(child.GetName() for child in stage.GetPrimAtPath(f"/World/Fleet/Boat_{boat:04d}")
+                          .GetChildren()) == sorted(PARTS)
+            pose = Rotation.from_quat(frame["orientation"][boat])
+            for name in PARTS:
+                part = parts[name]
+                points = part.mesh.points
+                if part.joint is not None:
+                    turn = Rotation.from_euler("z", -frame["angle"][boat, part.joint_column])
+                    points = turn.apply(points) + part.pivot
+                expected = pose.apply(points) + frame["position"][boat]
+                matrix = np.array(cache.GetLocalToWorldTransform(
+                    stage.GetPrimAtPath(f"/World/Fleet/Boat_{boat:04d}/{name}")))
+                drawn = np.c_[part.mesh.points, np.ones(len(points))] @ matrix
+                np.testing.assert_allclose(drawn[:, :3], expected, atol=1e-4, err_msg=f"boat {boat} {name}")
+
+
+def test_a_vessel_fleet_takes_joints_not_the_eboats_angles(tmp_path):
+    vessel = Wamv()
+    with pytest.raises(ValueError, match=r"FleetDrawing: a vessel is drawn one prim per boat"):
+        FleetDrawing(2, vessel=vessel, instanced=True)
+    with pytest.raises(ValueError, match=r"FleetDrawing\.vessel: expected a vessel"):
+        FleetDrawing(2, vessel="WAM-V")
+    recorder = StageRecorder(tmp_path / "bad.usda", fps=2.0, fleet=FleetDrawing(2, vessel=vessel))
+    try:
+        where, facing = np.zeros((2, 3)), [[0.0, 0.0, 0.0, 1.0]] * 2
+        with pytest.raises(ValueError, match=r"joints\['thruster_angle'\] is required"):
+            recorder.record(0.0, where, facing)
+        with pytest.raises(ValueError, match=r"not boom_angles"):
+            recorder.record(0.0, where, facing, [0.1, 0.2], joints={"thruster_angle": np.zeros((2, 2))})
+        with pytest.raises(ValueError, match=r"joints\['thruster_angle'\] must have shape \(2,\) or \(2, C\)"):
+            recorder.record(0.0, where, facing, joints={"thruster_angle": np.zeros((3, 2))})
+    finally:
+        recorder.abort()
