@@ -13,7 +13,6 @@ import numpy as np
 import warp as wp
 
 from ocean_warp.perception.scene import PARKED_DEPTH, Scene
-from ocean_warp.vessel import CollisionShape
 
 from ..tasks.obstacle_course import ObstacleCourse
 from .path_course_config import PathCourseConfig
@@ -32,18 +31,18 @@ class PathCourse(ObstacleCourse):
         origins: (N,) vec3 the environments' origins [m].
         config: the buoys and the contact.
         gates: gates per episode; ``gate_half_width``: half the width between a gate's buoys' centres [m].
-        shape: the vessel's capsule (``Vessel.collision_shape()``).
+        vessel: the ``ocean_warp.vessel.Vessel`` sailing it (its parts for rays, its capsule for contact).
         clearance: (N,) float array each boat's gap to the nearest buoy is written into [m].
         search: the gap written where no buoy is nearer [m].
     """
 
     def __init__(self, simulator, origins: wp.array, config: PathCourseConfig, *, gates: int, gate_half_width: float,
-                 shape: CollisionShape, clearance: wp.array, search: float = 10.0):
-        n, state, device = simulator.count, simulator.state, simulator.device
-        # The scene draws E-Boats for rays; contact and the gaps read only the boats' poses and capsule.
-        scene = Scene(simulator.ocean, envs=n, boat_env=np.arange(n), boat_position=state.position,
-                      boat_orientation=state.orientation, boom_angle=wp.zeros(n, dtype=float, device=device),
-                      origins=origins.numpy(), water_visible=True, free_slots=2 * gates + config.obstacles)
+                 vessel, clearance: wp.array, search: float = 10.0):
+        n = simulator.count
+        # The scene draws the vessel's own parts for rays; contact and the gaps read the poses and its capsule.
+        scene = Scene.for_vessel(vessel, simulator, envs=n, boat_env=np.arange(n), origins=origins.numpy(),
+                                 water_visible=True, free_slots=2 * gates + config.obstacles)
+        shape = vessel.collision_shape()
         super().__init__(scene, layout=None, contact=config.contact, shape=shape, clearance=clearance,
                          proximity_range=search)
         self.config = config

@@ -215,7 +215,7 @@ def _path_course(task: VrxTaskConfig, simulator, origin: wp.array, clearance: wp
     if task.kind is not VrxTask.FOLLOW_PATH or task.path_course is None:
         return None
     return PathCourse(simulator, origin, task.path_course, gates=task.goals, gate_half_width=GATE_HALF_WIDTH,
-                      shape=task.vessel.collision_shape(), clearance=clearance, search=_SEARCH)
+                      vessel=task.vessel, clearance=clearance, search=_SEARCH)
 
 
 def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDistribution:
