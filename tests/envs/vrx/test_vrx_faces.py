@@ -1,0 +1,89 @@
+"""A WAM-V task through every face: gymnasium's checker, SB3's VecEnv and a few PPO updates, rsl-rl's VecEnv, and
+the sharded CPU backend bit for bit against one process."""
+
+import dataclasses
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+import torch
+from gymnasium.utils.env_checker import check_env
+
+from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
+from ocean_warp.envs.parallel.sharded import ShardedSailingEnv
+from ocean_warp.envs.protocol import EnvBuffers
+from ocean_warp.envs.registration import make_task_config
+from ocean_warp.envs.vrx import VrxEnv
+
+from ..parallel.test_sharded_env import bit_equal
+
+
+def short_wayfinding(**changes):
+    """WamvWayfinding-v0 with 4 s episodes (a reset every 8 decisions) and goals close enough to reach."""
+    task = make_task_config("WamvWayfinding-v0", episode_time=4.0)
+    start = dataclasses.replace(task.start, goal_distance=(1.0, 3.0), goal_spacing=(1.0, 2.0))
+    return dataclasses.replace(task, start=start, **changes)
+
+
+def test_gymnasium_checker_passes_on_a_wamv_task():
+    env = gym.make("ocean_warp/WamvStationKeeping-v0")
+    assert env.action_space.shape == (2,) and env.observation_space.shape == (12,)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the unbounded observation Box is deliberate
+        check_env(env.unwrapped)
+
+
+def test_sb3_ppo_trains_on_a_wamv_task(one_torch_thread):
+    pytest.importorskip("stable_baselines3")
+    from stable_baselines3 import PPO
+    from stable_baselines3.common.env_checker import check_env as sb3_check_env  # noqa: F401 (importable)
+
+    from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
+
+    env = Sb3VecEnv(short_wayfinding(), num_envs=4, seed=0)
+    assert env.action_space.shape == (2,) and env.observation_space.shape == (12,)
+    model = PPO("MlpPolicy", env, n_steps=16, batch_size=32, n_epochs=1, seed=0, device="cpu",
+                policy_kwargs={"net_arch": [16, 16]})
+    before = [parameter.detach().clone() for parameter in model.policy.parameters()]
+    model.learn(total_timesteps=2 * 16 * 4)
+    assert model.num_timesteps == 2 * 16 * 4 and len(model.ep_info_buffer) >= 4
+    assert any(not torch.equal(a, b) for a, b in zip(before, model.policy.parameters()))
+
+
+def test_rsl_rl_face_of_a_wamv_task(rng):
+    env = RslRlVecEnv(VrxEnv(short_wayfinding(), 3, device="cpu", seed=int(rng.integers(1 << 30))))
+    assert env.num_actions == 2
+    observations = env.get_observations()
+    assert observations["policy"].shape == (3, 12) and observations["critic"].shape == (3, 15)
+    ended = torch.zeros(3, dtype=torch.bool)
+    for _ in range(9):
+        observations, rewards, dones, extras = env.step(torch.as_tensor(rng.uniform(-1, 1, (3, 2)),
+                                                                        dtype=torch.float32))
+        ended |= dones.bool()
+        assert torch.isfinite(rewards).all() and torch.isfinite(observations["policy"]).all()
+    assert bool(ended.all())  # 8-decision episodes: every env ended once
+
+
+def test_a_wamv_task_over_workers_matches_one_process():
+    """4 WAM-V environments over 2 workers against one VrxEnv with the same seed: every buffer bit for bit,
+    through same-step resets and a re-seeded reset."""
+    task = short_wayfinding()
+    single = VrxEnv(task, 4, device="cpu", seed=5)
+    generator = torch.Generator().manual_seed(1)
+    names = [field.name for field in dataclasses.fields(EnvBuffers)]
+    with ShardedSailingEnv(task, 4, workers=2, seed=5) as sharded:
+        assert sharded.num_actions == 2 and sharded.buffers.actions.shape == (4, 2)
+        resets = 0
+        for step in range(12):
+            if step == 9:
+                single.reset(seed=2)
+                sharded.reset(seed=2)
+            actions = 2.0 * torch.rand(4, 2, generator=generator) - 1.0
+            single.step(actions)
+            sharded.step(actions)
+            resets += int(single.buffers.done.sum())
+            for name in names:
+                assert bit_equal(getattr(single.buffers, name), getattr(sharded.buffers, name)), (step, name)
+        assert resets >= 4
+        assert np.isfinite(single.buffers.policy_obs.numpy()).all()
