@@ -8,4 +8,12 @@
   and on a task with a lidar (EBoatAvoid-v0) reactive obstacle avoidance: collision cones about the lidar's
   nearest return per sector (``LidarSectors``) turn each target into a steering target.
 - ``autopilot_kernels``: its Warp kernels, one decision for every boat.
+
+For the WAM-V (two stern thrusters, fixed or azimuthing), batched in torch:
+
+- ``station_keeping``: ``StationKeepingController`` and ``StationKeepingConfig``, PID station keeping on the
+  goal pose, the baseline of VRX's station-keeping task;
+- ``los_guidance``: ``LosGuidanceController`` and ``LosGuidanceConfig``, line-of-sight guidance along the
+  route, the baseline of VRX's wayfinding and follow-path tasks;
+- ``thrust_allocation``: ``ThrusterLayout`` and the force and moment -> thruster actions mappings they share.
 """
