@@ -22,6 +22,7 @@ from ..protocol import EnvBuffers
 from ..sailing_env import environment_origins
 from ..vessel_env import BatchedVesselEnv
 from .path_course import PathCourse
+from .scoring import VrxScorer
 from .task_config import VrxTask, VrxTaskConfig
 from .vrx_kernels import (POLICY_BASE, PRIVILEGED, VesselStartRows, VrxCourse, VrxParameters, VrxStartDistribution,
                           vrx_draw_starts, vrx_evaluate, vrx_observe)
@@ -118,7 +119,7 @@ class VrxEnv(BatchedVesselEnv):
         """The :class:`~ocean_warp.envs.vrx.path_course.PathCourse` (gates' buoys, obstacles, contact) of the path
         with ``path_course``; None otherwise."""
         self._hold([] if self.obstacles is None else [self.obstacles])
-        self.scorer = None
+        self.scorer = VrxScorer(self, GATE_HALF_WIDTH)
         """What keeps VRX's score of each episode and writes ``final_score`` (``ocean_warp.envs.vrx.scoring``)."""
 
         view, state = wp.to_torch, self.simulator.state
@@ -161,8 +162,7 @@ class VrxEnv(BatchedVesselEnv):
                           state.orientation, self._course],
                   outputs=[self.reward, self.terminated, self.time_out, self.done, self.reset_mask, self.final_return,
                            self.final_length, self.final_success, self.final_status, self.final_waypoints])
-        if self.scorer is not None:
-            self.scorer.launch_update(self)
+        self.scorer.launch_update(self)
         self._observe(self.final_policy_obs, self.final_critic_obs)
         self._start_episodes(self.reset_mask)
         self._sense_components()
@@ -181,8 +181,7 @@ class VrxEnv(BatchedVesselEnv):
                           self._start_rows])
         self._draw_components(mask, self._course)
         self.simulator.reset_masked(mask)
-        if self.scorer is not None:
-            self.scorer.launch_reset(self, mask)
+        self.scorer.launch_reset(self, mask)
 
     # --- host calls --------------------------------------------------------------------------------
     def reset(self, seed: int | None = None) -> None:

@@ -12,11 +12,12 @@ from __future__ import annotations
 import warp as wp
 
 from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
 __all__ = ["VrxParameters", "VrxStartDistribution", "VrxCourse", "VesselStartRows", "STATION_KEEPING",
            "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "vrx_evaluate", "vrx_observe",
-           "vrx_draw_starts"]
+           "vrx_draw_starts", "vrx_path_inputs", "as_bool"]
 
 STATION_KEEPING = wp.constant(0)
 WAYFINDING = wp.constant(1)
@@ -361,3 +362,29 @@ def vrx_draw_starts(
     course.episode_return[env] = 0.0
     for k in range(p.num_actions):
         course.last_action[env, k] = 0.0
+
+
+@wp.kernel(enable_backward=False)
+def vrx_path_inputs(
+    route: wp.array2d(dtype=wp.vec3),
+    half_width: float,
+    status: wp.array(dtype=int),
+    gates: wp.array2d(dtype=wp.vec4),
+    contact: wp.array(dtype=wp.bool),
+):
+    """The follow-the-path score's inputs: each gate's red (starboard) and green (port) buoy x, y from the origin
+    [m] (the gate's centre -+ ``half_width`` across the heading it is passed in), and whether the boat touches an
+    obstacle now (its COLLIDED flag)."""
+    env, g = wp.tid()
+    gate = route[env, g]
+    across = wp.vec2(-wp.sin(gate[2]), wp.cos(gate[2])) * half_width
+    gates[env, g] = wp.vec4(gate[0] - across[0], gate[1] - across[1], gate[0] + across[0], gate[1] + across[1])
+    if g == 0:
+        contact[env] = (status[env] & STATUS_COLLIDED) != 0
+
+
+@wp.kernel(enable_backward=False)
+def as_bool(mask: wp.array(dtype=wp.int32), out: wp.array(dtype=wp.bool)):
+    """``out = mask != 0``."""
+    i = wp.tid()
+    out[i] = mask[i] != 0

@@ -173,3 +173,26 @@ def test_shipped_wayfinding_policy_reaches_its_first_goal_on_the_cpu():
         error = pose_error(b.final_position.numpy() - b.origin.numpy(), yaw_of(b.final_orientation.numpy()), first)
         best = np.minimum(best, error)
     assert np.all(best < 1.0), best
+
+
+@pytest.mark.parametrize("kind, goals", [("station_keeping", 1), ("wayfinding", 3)])
+def test_final_score_is_vrx_rule_over_the_episode(vessel, device, rng, kind, goals):
+    """``final_score`` at an episode's end equals VRX's rule computed here in numpy from every decision's pose:
+    station keeping, the mean pose error to the goal; wayfinding, the mean over the goals of the least error."""
+    task = VrxTaskConfig(kind=kind, goals=goals, vessel=vessel, episode_time=3.0,
+                         start=VrxStartConfig(goal_distance=(30.0, 40.0), goal_spacing=(30.0, 40.0)))
+    n = 4
+    env = VrxEnv(task, n, device=device, seed=int(rng.integers(1 << 30)))
+    b = env.buffers
+    route = b.route.cpu().numpy().copy()
+    errors = []
+    for step in range(task.max_episode_length):
+        env.step(torch.as_tensor(rng.uniform(-1, 1, (n, 3)), dtype=torch.float32, device=env.torch_device))
+        local = b.final_position.cpu().numpy() - b.origin.cpu().numpy()
+        yaw = yaw_of(b.final_orientation.cpu().numpy())
+        errors.append(np.stack([pose_error(local, yaw, route[:, g]) for g in range(goals)], axis=1))
+        done = b.done.cpu().numpy()
+        assert done.all() == (step == task.max_episode_length - 1) and (done.all() or not done.any())
+    errors = np.array(errors)  # (decisions, N, goals)
+    expected = errors[:, :, 0].mean(axis=0) if kind == "station_keeping" else errors.min(axis=0).mean(axis=1)
+    np.testing.assert_allclose(b.final_score.cpu().numpy(), expected, rtol=2e-4, atol=2e-4)
