@@ -212,7 +212,8 @@ def test_a_task_without_the_reef_rule_builds_a_kernel_without_the_reef_column(de
     assert observe_kernel_for(plain).key != observe_kernel_for(reefed).key
     # 40 m from the waypoint on a 100 m leg with the 25 m margin (d_lost 125 m), dead ahead.
     policy, critic = _observe(plain, device, 6)
-    np.testing.assert_allclose(policy[:5], [2.0 * 40.0 / 125.0 - 1.0, 0.0, 2.0 / 5.0 - 1.0, 3.0 / 15.0 - 1.0, 0.0], atol=1e-6)
+    seed = [2.0 * 40.0 / 125.0 - 1.0, 0.0, 2.0 / 5.0 - 1.0, 3.0 / 15.0 - 1.0, 0.0]  # apparent wind 3 m/s dead ahead
+    np.testing.assert_allclose(policy[:5], seed, atol=1e-6)
     assert np.isnan(policy[5]), "the plain task's kernel wrote a sixth column"
     np.testing.assert_allclose(critic[:5], policy[:5])
     np.testing.assert_allclose(critic[5:8], [40.0 / 125.0, 0.0, 1.0], atol=1e-6)
