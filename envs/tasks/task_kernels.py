@@ -24,7 +24,7 @@ from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
-from .observation_blocks import (PRIVILEGED_BLOCK, SET_BLOCKS, SET_COLUMNS, privileged_columns, reef_column)
+from .observation_blocks import SET_BLOCKS, SET_COLUMNS, privileged_columns, reef_column
 from .reward_terms import (REWARD_TERMS, collision, flagged, lost, motor_energy, progress, propeller_shaping,
                            proximity, reach, reward_terms, smoothness, time_cost)
 from .task_configs import ObservationSet

@@ -17,10 +17,11 @@ from ocean_warp.eboat import EBoatConfig
 from ocean_warp.kernels.spatial import vec6
 from ocean_warp.envs import (AvoidSailConfig, MissionConfig, MissionSailConfig, ReefRule, RewardConfig, SailingEnv,
                              WaypointConfig, WaypointPlusConfig)
+from ocean_warp.envs.tasks.observation_blocks import PRIVILEGED_BLOCK
 from ocean_warp.envs.tasks.reward_terms import reward_terms
-from ocean_warp.envs.tasks.task_kernels import (BoatView, Course, EpisodeEnds, TaskParameters, evaluate_kernel,
-                                                evaluate_kernel_for, observe_kernel, observe_kernel_for,
-                                                policy_observation_count)
+from ocean_warp.envs.tasks.task_kernels import (PRIVILEGED_OBS, BoatView, Course, EpisodeEnds, TaskParameters,
+                                                evaluate_kernel, evaluate_kernel_for, observe_kernel,
+                                                observe_kernel_for, policy_observation_count)
 
 ZERO_WEIGHTS = dict(propeller_gain=0.0, propeller_cost=0.0, reach_bonus=0.0, lost_penalty=0.0, flagged_penalty=0.0,
                     collision_penalty=0.0, proximity_cost=0.0, smoothness=0.0, time_cost=0.0, energy_cost=0.0)
@@ -217,9 +218,12 @@ def test_a_task_without_the_reef_rule_builds_a_kernel_without_the_reef_column(de
     assert np.isnan(policy[5]), "the plain task's kernel wrote a sixth column"
     np.testing.assert_allclose(critic[:5], policy[:5])
     np.testing.assert_allclose(critic[5:8], [40.0 / 125.0, 0.0, 1.0], atol=1e-6)
+    assert np.isfinite(critic[:5 + PRIVILEGED_OBS]).all() and np.isnan(critic[5 + PRIVILEGED_OBS:]).all()
     policy, critic = _observe(reefed, device, 6)
     np.testing.assert_allclose(policy[5], 2.0 / (3 - 1))
     np.testing.assert_allclose(critic[6:9], [40.0 / 125.0, 0.0, 1.0], atol=1e-6)
+    assert np.isfinite(critic).all()
+    assert len(PRIVILEGED_BLOCK) == PRIVILEGED_OBS
 
 
 def test_the_plus_block_reads_the_sensor_channels_it_names(device):
