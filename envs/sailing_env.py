@@ -33,8 +33,8 @@ from .tasks.task_kernels import (
     StartDistribution,
     TaskParameters,
     draw_starts,
-    evaluate,
-    observe,
+    evaluate_kernel_for,
+    observe_kernel_for,
     policy_observation_count,
 )
 from .decision_hook import DecisionHook
@@ -195,7 +195,7 @@ class SailingEnv(BatchedVesselEnv):
         episodes for the environments that ended, and the observations of the next decision (launch only)."""
         state = self.simulator.state
         self._sense_components()
-        wp.launch(evaluate, dim=self.num_envs, device=self.device,
+        wp.launch(evaluate_kernel_for(self.task), dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.actions, state.status, state.position, self.clearance, self._course,
                           self._ends])
         self._observe(self.final_policy_obs, self.final_critic_obs)
@@ -204,7 +204,8 @@ class SailingEnv(BatchedVesselEnv):
         self._observe(self.policy_obs, self.critic_obs)
 
     def _observe(self, policy: wp.array, critic: wp.array) -> None:
-        wp.launch(observe, dim=self.num_envs, device=self.device, inputs=[self.parameters, self._boats, self._course],
+        wp.launch(observe_kernel_for(self.task), dim=self.num_envs, device=self.device,
+                  inputs=[self.parameters, self._boats, self._course],
                   outputs=[policy, critic])
         self._append_component_observations(policy, critic)
 
@@ -274,10 +275,7 @@ def _obstacle_course(task: TaskConfig, simulator: EBoatSimulator, origin: wp.arr
 
 
 def _task_parameters(task: TaskConfig) -> TaskParameters:
-    return struct_from(TaskParameters, task, task.reward,
-                       observation_set=0 if ObservationSet(task.observation) is ObservationSet.SEED else 1,
-                       sail_only=int(not task.propeller), reef_observation=task.reef_observations,
-                       reef_levels=task.simulator.boat.reef_levels)
+    return struct_from(TaskParameters, task, task.reward, reef_levels=task.simulator.boat.reef_levels)
 
 
 def _start_distribution(task: TaskConfig, start_height: float, device) -> StartDistribution:

@@ -31,14 +31,25 @@ from .random_streams import IMU_BIAS, stream_state
 from .spatial import heading_of, point_velocity, vec6, wrap_angle
 from .wind_field import GustModel, wind_at_height
 
-__all__ = ["CHANNELS", "vec16", "SensorModel", "read_sensors", "reset_sensors"]
+__all__ = ["CHANNELS", "vec16", "GNSS_POSITION", "GNSS_VELOCITY", "SPECIFIC_FORCE", "ANGULAR_RATE", "HEADING",
+           "WIND_ANGLE", "WIND_SPEED", "WATER_SPEED", "SensorModel", "read_sensors", "reset_sensors"]
 
 CHANNELS = wp.constant(16)
 vec16 = wp.types.vector(length=16, dtype=wp.float32)
-IMU_FIRST = wp.constant(6)
+GNSS_POSITION = wp.constant(0)
+"""First of the GNSS position's three channels (x, y, z)."""
+GNSS_VELOCITY = wp.constant(3)
+"""First of the GNSS velocity's three channels (x, y, z)."""
+SPECIFIC_FORCE = wp.constant(6)
+"""First of the IMU specific force's three channels (body x, y, z)."""
+ANGULAR_RATE = wp.constant(9)
+"""First of the IMU angular rate's three channels (body x, y, z: roll, pitch, yaw rate)."""
+IMU_FIRST = SPECIFIC_FORCE
 IMU_LAST = wp.constant(11)
 HEADING = wp.constant(12)
 WIND_ANGLE = wp.constant(13)
+WIND_SPEED = wp.constant(14)
+WATER_SPEED = wp.constant(15)
 
 
 @wp.struct

@@ -1,5 +1,13 @@
-"""The kernels of a sailing task, one thread per environment: actions to commands, rewards and episode
-ends, observations, and the start of a new episode for the environments that ended.
+"""The kernels of a sailing task, one thread per environment: rewards and episode ends, observations, and the
+start of a new episode for the environments that ended.
+
+The evaluation and observation kernels are built for each task from the reward terms (``reward_terms``) and the
+observation blocks (``observation_blocks``) its config selects: what a task does not select is not in its kernel,
+and each distinct selection is built (and compiled) once per process, whatever the number of environments or
+configs that share it.
+
+    wp.launch(evaluate_kernel_for(task), ...)    # the task's reward and episode ends, one launch a decision
+    wp.launch(observe_kernel_for(task), ...)     # its policy and critic observations, one launch
 
 Conventions: positions of waypoints are relative to the environment's origin on the periodic ocean;
 the boat's position is world ENU. Bearings are measured from the bow, positive to port [rad].
@@ -7,16 +15,24 @@ the boat's position is world ENU. Bearings are measured from the bow, positive t
 
 from __future__ import annotations
 
+import functools
+
 import warp as wp
 
-from ocean_warp.kernels.eboat_actions import MAX_LEVEL, RUDDER_LIMIT, SHEET_HALF, commanded_level
+from ocean_warp.kernels.eboat_actions import propeller_level
 from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
-from ocean_warp.kernels.spatial import DEGREES, PI, heading_of, vec6, wrap_angle
+from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
+
+from .observation_blocks import SET_BLOCKS, SET_COLUMNS, privileged_columns, reef_column
+from .reward_terms import (REWARD_TERMS, collision, flagged, lost, motor_energy, progress, propeller_shaping,
+                           proximity, reach, reward_terms, smoothness, time_cost)
+from .task_configs import ObservationSet
+from .task_structs import BoatView, Course, EpisodeEnds, StartDistribution, StartRows, TaskParameters
 
 __all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "BoatView", "StartRows", "POLICY_OBS",
-           "PRIVILEGED_OBS", "policy_observation_count", "evaluate", "observe",
-           "draw_starts", "reef_level_for"]
+           "PRIVILEGED_OBS", "policy_observation_count", "evaluate_kernel", "evaluate_kernel_for", "observe_kernel",
+           "observe_kernel_for", "draw_starts", "reef_level_for"]
 
 EPISODE_START = wp.constant(0x3C6E_F372)
 """Tag of the random stream that draws each episode's start."""
@@ -26,179 +42,11 @@ CURRENT_DRAW = wp.constant(0x5BE0_CD19)
 """Tag of the random stream that draws each episode's current (speed and direction)."""
 REEF_DRAW = wp.constant(0x1F83_D9AB)
 """Tag of the random stream that draws each episode's random reef level (``ReefRule.random_level``)."""
-SEED_OBS = wp.constant(5)
-PLUS_OBS = wp.constant(15)
 PRIVILEGED_OBS = 12
 """Values the critic sees beyond the policy's observation."""
 POLICY_OBS = {"seed": 5, "plus": 15}
 """Values of each observation set; a task appends its reef level and its lidar's sectors
 (:func:`policy_observation_count`). ``observation_blocks`` names every column (its tests hold it to these)."""
-
-
-@wp.struct
-class TaskParameters:
-    route_length: int
-    """Waypoints per episode."""
-    reach_radius: float
-    """[m]"""
-    lost_margin: float
-    """[m] beyond the leg's length."""
-    progress_scale: float
-    """[m]"""
-    propeller_gain: float
-    propeller_cost: float
-    reach_bonus: float
-    lost_penalty: float
-    flagged_penalty: float
-    smoothness: float
-    time_cost: float
-    collision_penalty: float
-    proximity_cost: float
-    proximity_range: float
-    """[m]"""
-    energy_cost: float
-    """Per second at full thrust; (|level| / 5)^1.5 of it at a lower level."""
-    decision_period: float
-    """[s]"""
-    max_episode_length: int
-    """Decisions before a time-out."""
-    observation_set: int
-    """0: the seed's 5 values, 1: Waypoint+'s 15."""
-    sail_only: int
-    """1: the task has no propeller (``TaskConfig.propeller`` False): the level commanded, and the one the
-    reward sees, is 0 whatever a0 is. 0 (also a zeroed struct's value): a0 sets the level."""
-    reef_observation: int
-    """1: the policy sees its reef level after the observation set's values (a task with a ``reef`` rule)."""
-    reef_levels: int
-    """The boat's reef levels, the full sail included (the observed value is level / (levels - 1))."""
-
-
-@wp.struct
-class Course:
-    """Each environment's course and episode bookkeeping, N rows (the task's own arrays)."""
-
-    origin: wp.array(dtype=wp.vec3)
-    """World position of the environment's origin [m]."""
-    route: wp.array2d(dtype=wp.vec3)
-    """(N, R) the episode's waypoints from the origin [m]."""
-    target_index: wp.array(dtype=int)
-    """Index of the waypoint sailed to."""
-    leg_start: wp.array(dtype=wp.vec3)
-    """Where the current leg began, from the origin [m]."""
-    previous_distance: wp.array(dtype=float)
-    """Distance to the waypoint at the last decision [m]."""
-    last_action: wp.array2d(dtype=float)
-    """(N, 3) the actions of the last decision (0 at an episode's start)."""
-    episode_length: wp.array(dtype=wp.int32)
-    """Decisions in the episode."""
-    episode_return: wp.array(dtype=float)
-    """Reward summed over the episode."""
-    episode_count: wp.array(dtype=int)
-    """Episodes started (numbers each episode's random stream)."""
-    target_world: wp.array(dtype=wp.vec3)
-    """World position of the waypoint sailed to [m]."""
-
-
-@wp.struct
-class EpisodeEnds:
-    """What a decision's evaluation writes: its reward and how episodes ended, N rows."""
-
-    reward: wp.array(dtype=float)
-    terminated: wp.array(dtype=wp.bool)
-    time_out: wp.array(dtype=wp.bool)
-    done: wp.array(dtype=wp.bool)
-    reset_mask: wp.array(dtype=wp.int32)
-    """1 where the episode ended (the environments to restart), else 0."""
-    final_return: wp.array(dtype=float)
-    final_length: wp.array(dtype=wp.int32)
-    final_success: wp.array(dtype=float)
-    final_status: wp.array(dtype=int)
-    final_waypoints: wp.array(dtype=int)
-
-
-@wp.struct
-class BoatView:
-    """The simulator's arrays the observations read (``EBoatState``), N rows."""
-
-    position: wp.array(dtype=wp.vec3)
-    orientation: wp.array(dtype=wp.quat)
-    velocity: wp.array(dtype=vec6)
-    wind_velocity: wp.array(dtype=wp.vec3)
-    truth: wp.array2d(dtype=float)
-    readings: wp.array2d(dtype=float)
-    rudder_angle: wp.array(dtype=float)
-    boom_angle: wp.array(dtype=float)
-    sheet_limit: wp.array(dtype=float)
-    reef_level: wp.array(dtype=int)
-
-
-@wp.struct
-class StartRows:
-    """The simulator's start rows a new episode writes (``EBoatStart``), N rows."""
-
-    position: wp.array(dtype=wp.vec3)
-    orientation: wp.array(dtype=wp.quat)
-    velocity: wp.array(dtype=vec6)
-    sheet: wp.array(dtype=float)
-    wind_speed: wp.array(dtype=float)
-    wind_direction: wp.array(dtype=float)
-    gust_scale: wp.array(dtype=float)
-    foil_scale: wp.array(dtype=wp.vec3)
-    noise_scale: wp.array(dtype=float)
-    current_speed: wp.array(dtype=float)
-    current_direction: wp.array(dtype=float)
-    reef_level: wp.array(dtype=int)
-
-
-@wp.struct
-class StartDistribution:
-    """The start of an episode (radians and metres; see ``envs.tasks.StartConfig``)."""
-
-    heading_low: float
-    heading_high: float
-    heading_step: float
-    heading_toward_waypoint: int
-    wind_speed_low: float
-    wind_speed_high: float
-    wind_direction_low: float
-    wind_direction_high: float
-    wind_direction_step: float
-    gust_scale_low: float
-    gust_scale_high: float
-    waypoint_distance_low: float
-    waypoint_distance_high: float
-    waypoint_bearing_low: float
-    waypoint_bearing_high: float
-    random_waypoint: int
-    """1: draw the first (only) waypoint per episode; 0: the route is fixed."""
-    start_point: wp.vec3
-    position_jitter: float
-    start_height: float
-    surge_low: float
-    surge_high: float
-    sheet_low: float
-    sheet_high: float
-    foil_variation: float
-    """Half-width v of the foil factors' range [1 - v, 1 + v]."""
-    noise_scale_low: float
-    noise_scale_high: float
-    current_speed_low: float
-    """[m/s]; low = high (the simulator config's speed) when the task does not randomise the current."""
-    current_speed_high: float
-    current_direction_low: float
-    """[rad]"""
-    current_direction_high: float
-    reef_rule: int
-    """1: the task draws a reef level per episode (``TaskConfig.reef``); 0: the full sail always."""
-    reef_thresholds: wp.array(dtype=float)
-    """The rule's true wind speeds [m/s] (``ReefRule.thresholds``; one unused row when there are none)."""
-    reef_threshold_count: int
-    reef_fixed_level: int
-    """``ReefRule.level``, or -1 for the rule."""
-    reef_random: float
-    """``ReefRule.random_level``: probability of a uniform draw over the levels instead."""
-    reef_levels: int
-    """The boat's reef levels, the full sail included."""
 
 
 def policy_observation_count(task) -> int:
@@ -244,176 +92,181 @@ def planar(v: wp.vec3) -> wp.vec3:
     return wp.vec3(v[0], v[1], 0.0)
 
 
-@wp.kernel(enable_backward=False)
-def evaluate(
-    task: TaskParameters,
-    actions: wp.array2d(dtype=float),
-    status: wp.array(dtype=int),
-    position: wp.array(dtype=wp.vec3),
-    clearance: wp.array(dtype=float),
-    course: Course,
-    ends: EpisodeEnds,
-):
-    """Reward, waypoint progress and the end of the episode after a decision (see ``RewardConfig``);
-    ``clearance``: each boat's gap to the nearest obstacle [m] (the proximity term)."""
-    env = wp.tid()
-    flags = status[env]
-    index = course.target_index[env]
-    local = position[env] - course.origin[env]
-    target = course.route[env, index]
-    distance = wp.length(planar(target - local))
-    leg = wp.length(planar(target - course.leg_start[env]))
-    level = float(wp.abs(commanded_level(task.sail_only == 0, actions[env, 0])))
-
-    r = float(0.0)
-    ended = False
-    success = False
-    if flags != 0:
-        r = -task.flagged_penalty
-        if (flags & STATUS_COLLIDED) != 0:
-            r = -task.collision_penalty
-        ended = True
-    else:
-        r = (course.previous_distance[env] - distance) / task.progress_scale
-        if r > 0.0:
-            r = r * (1.0 - task.propeller_gain * level / float(MAX_LEVEL))
-        else:
-            r = r - task.propeller_cost * level
-        if distance <= task.reach_radius:
-            r = r + task.reach_bonus
-            if index + 1 >= task.route_length:
-                ended = True
-                success = True
-                index = index + 1
-            else:
-                course.leg_start[env] = target
-                index = index + 1
-                target = course.route[env, index]
-                distance = wp.length(planar(target - local))
-        elif distance > leg + task.lost_margin:
-            r = r - task.lost_penalty
-            ended = True
-        r = r - task.proximity_cost * wp.max(1.0 - clearance[env] / task.proximity_range, 0.0)
-    smooth = float(0.0)
-    for k in range(3):
-        a = actions[env, k]
-        if wp.isfinite(a):
-            a = wp.clamp(a, -1.0, 1.0)
-        else:
-            a = 0.0
-        change = a - course.last_action[env, k]
-        smooth += change * change
-        course.last_action[env, k] = a
-    energy = task.energy_cost * task.decision_period * wp.pow(level / float(MAX_LEVEL), 1.5)
-    r = r - task.smoothness * smooth - task.time_cost - energy
-
-    length = course.episode_length[env] + 1
-    total = course.episode_return[env] + r
-    late = (not ended) and length >= task.max_episode_length
-    ends.reward[env] = r
-    ends.terminated[env] = ended
-    ends.time_out[env] = late
-    ends.done[env] = ended or late
-    course.previous_distance[env] = distance
-    course.target_index[env] = wp.min(index, task.route_length - 1)
-    course.target_world[env] = course.origin[env] + course.route[env, wp.min(index, task.route_length - 1)]
-    course.episode_length[env] = length
-    course.episode_return[env] = total
-    if ended or late:
-        ends.reset_mask[env] = 1
-        ends.final_return[env] = total
-        ends.final_length[env] = length
-        ends.final_status[env] = flags
-        ends.final_waypoints[env] = index
-        if success:
-            ends.final_success[env] = 1.0
-        else:
-            ends.final_success[env] = 0.0
-    else:
-        ends.reset_mask[env] = 0
-
-
 @wp.func
-def finite_or_zero(value: float) -> float:
-    if wp.isfinite(value):
-        return value
+def clamped_action(action: float) -> float:
+    """``action`` clipped to [-1, 1]; 0 where it is not finite."""
+    if wp.isfinite(action):
+        return wp.clamp(action, -1.0, 1.0)
     return 0.0
 
 
-@wp.func
-def unit_clip(value: float) -> float:
-    return wp.clamp(finite_or_zero(value), -1.0, 1.0)
+@functools.cache
+def evaluate_kernel(terms: tuple[str, ...]) -> wp.Kernel:
+    """The kernel of a decision's reward, waypoint progress and episode end with the progress and the optional
+    reward ``terms`` (names of ``reward_terms.REWARD_TERMS``; see ``RewardConfig``), built once per selection; its
+    key names them (``evaluate_progress_reach_lost_flagged_collision`` for the seed's reward).
 
+    Launched over the environments with (task: TaskParameters, actions (N, 3), status (N,) the simulator's flags,
+    position (N,) vec3 [m], clearance (N,) each boat's gap to the nearest obstacle [m], course: Course,
+    ends: EpisodeEnds)."""
+    unknown = sorted(set(terms) - set(REWARD_TERMS))
+    if unknown:
+        raise ValueError(f"evaluate_kernel: unknown reward terms {unknown}; the terms: {', '.join(REWARD_TERMS)}")
+    selected = set(terms)
+    with_propeller, with_energy = "propeller" in selected, "energy" in selected
+    with_reach, with_lost = "reach" in selected, "lost" in selected
+    with_flagged, with_collision = "flagged" in selected, "collision" in selected
+    with_proximity, with_smoothness, with_time = "proximity" in selected, "smoothness" in selected, "time" in selected
+    with_level = with_propeller or with_energy
+    name = "_".join(("evaluate_progress",) + tuple(term for term in REWARD_TERMS if term in selected))
 
-@wp.kernel(enable_backward=False)
-def observe(
-    task: TaskParameters,
-    boats: BoatView,
-    course: Course,
-    policy: wp.array2d(dtype=float),
-    critic: wp.array2d(dtype=float),
-):
-    """The policy's observation (the task's set, then its reef level, level / (levels - 1) in [0, 1], on a task
-    with a reef rule; ``observation_blocks`` names each column) and the critic's: the policy's followed by privileged truth (distance, bearing,
-    velocities, attitude, true wind, progress along the route). A lidar's sectors come after each
-    (``ObstacleCourse.append_observation``)."""
-    env = wp.tid()
-    rotation = boats.orientation[env]
-    heading = heading_of(rotation)
-    target = course.target_world[env]
-    to_target = planar(target - boats.position[env])
-    distance = wp.length(to_target)
-    bearing = wrap_angle(wp.atan2(to_target[1], to_target[0]) - heading)
-    leg = wp.length(planar(target - (course.origin[env] + course.leg_start[env])))
-    lost_distance = leg + task.lost_margin
-    p = 0
-    if task.observation_set == 0:
-        policy[env, 0] = unit_clip(2.0 * distance / lost_distance - 1.0)
-        policy[env, 1] = unit_clip(bearing * DEGREES / 180.0)
-        policy[env, 2] = unit_clip(boats.velocity[env][0] / 5.0 - 1.0)
-        policy[env, 3] = unit_clip(boats.truth[env, 14] / 15.0 - 1.0)
-        policy[env, 4] = unit_clip(boats.truth[env, 13] * DEGREES / 180.0)
-        p = SEED_OBS
-    else:
-        seen = planar(target - wp.vec3(boats.readings[env, 0], boats.readings[env, 1], 0.0))
-        seen_bearing = wp.atan2(seen[1], seen[0]) - boats.readings[env, 12]
-        awa = boats.readings[env, 13]
-        policy[env, 0] = finite_or_zero(wp.length(seen) / lost_distance)
-        policy[env, 1] = finite_or_zero(wp.sin(seen_bearing))
-        policy[env, 2] = finite_or_zero(wp.cos(seen_bearing))
-        policy[env, 3] = finite_or_zero(boats.readings[env, 15] / 2.0)
-        policy[env, 4] = finite_or_zero(wp.sin(awa))
-        policy[env, 5] = finite_or_zero(wp.cos(awa))
-        policy[env, 6] = finite_or_zero(boats.readings[env, 14] / 10.0)
-        policy[env, 7] = finite_or_zero(wp.atan2(boats.readings[env, 7], boats.readings[env, 8]))
-        policy[env, 8] = finite_or_zero(boats.readings[env, 11] / 0.5)
-        policy[env, 9] = finite_or_zero(boats.rudder_angle[env] / RUDDER_LIMIT)
-        policy[env, 10] = finite_or_zero(boats.boom_angle[env] / (2.0 * SHEET_HALF))
-        policy[env, 11] = finite_or_zero(boats.sheet_limit[env] / (2.0 * SHEET_HALF))
+    @wp.kernel(enable_backward=False, module="unique", name=name)
+    def evaluate(
+        task: TaskParameters,
+        actions: wp.array2d(dtype=float),
+        status: wp.array(dtype=int),
+        position: wp.array(dtype=wp.vec3),
+        clearance: wp.array(dtype=float),
+        course: Course,
+        ends: EpisodeEnds,
+    ):
+        env = wp.tid()
+        flags = status[env]
+        index = course.target_index[env]
+        local = position[env] - course.origin[env]
+        target = course.route[env, index]
+        distance = wp.length(planar(target - local))
+        leg = wp.length(planar(target - course.leg_start[env]))
+        level = float(0.0)
+        if wp.static(with_level):
+            level = float(wp.abs(propeller_level(actions[env, 0])))
+
+        r = float(0.0)
+        ended = False
+        success = False
+        if flags != 0:
+            if (flags & STATUS_COLLIDED) != 0:
+                if wp.static(with_collision):
+                    r = collision(task.collision_penalty)
+            else:
+                if wp.static(with_flagged):
+                    r = flagged(task.flagged_penalty)
+            ended = True
+        else:
+            r = progress(course.previous_distance[env], distance, task.progress_scale)
+            if wp.static(with_propeller):
+                r = propeller_shaping(r, level, task.propeller_gain, task.propeller_cost)
+            if distance <= task.reach_radius:
+                if wp.static(with_reach):
+                    r = r + reach(task.reach_bonus)
+                if index + 1 >= task.route_length:
+                    ended = True
+                    success = True
+                    index = index + 1
+                else:
+                    course.leg_start[env] = target
+                    index = index + 1
+                    target = course.route[env, index]
+                    distance = wp.length(planar(target - local))
+            elif distance > leg + task.lost_margin:
+                if wp.static(with_lost):
+                    r = r + lost(task.lost_penalty)
+                ended = True
+            if wp.static(with_proximity):
+                r = r + proximity(clearance[env], task.proximity_cost, task.proximity_range)
+        before = wp.vec3(course.last_action[env, 0], course.last_action[env, 1], course.last_action[env, 2])
+        now = wp.vec3(clamped_action(actions[env, 0]), clamped_action(actions[env, 1]),
+                      clamped_action(actions[env, 2]))
         for k in range(3):
-            policy[env, 12 + k] = course.last_action[env, k]
-        p = PLUS_OBS
-    if task.reef_observation != 0:
-        policy[env, p] = float(boats.reef_level[env]) / float(wp.max(task.reef_levels - 1, 1))
-        p = p + 1
-    for k in range(p):
-        critic[env, k] = policy[env, k]
-    nu = boats.velocity[env]
-    up = wp.quat_rotate(rotation, wp.vec3(0.0, 0.0, 1.0))
-    wind = boats.wind_velocity[env]
-    true_wind_angle = wp.atan2(wind[1], wind[0]) - heading
-    critic[env, p + 0] = finite_or_zero(distance / lost_distance)
-    critic[env, p + 1] = finite_or_zero(wp.sin(bearing))
-    critic[env, p + 2] = finite_or_zero(wp.cos(bearing))
-    critic[env, p + 3] = finite_or_zero(nu[0] / 2.0)
-    critic[env, p + 4] = finite_or_zero(nu[1])
-    critic[env, p + 5] = finite_or_zero(nu[5] / 0.5)
-    critic[env, p + 6] = finite_or_zero(up[0])
-    critic[env, p + 7] = finite_or_zero(up[1])
-    critic[env, p + 8] = finite_or_zero(wp.length(wind) / 10.0)
-    critic[env, p + 9] = finite_or_zero(wp.sin(true_wind_angle))
-    critic[env, p + 10] = finite_or_zero(wp.cos(true_wind_angle))
-    critic[env, p + 11] = float(course.target_index[env]) / float(task.route_length)
+            course.last_action[env, k] = now[k]
+        if wp.static(with_smoothness):
+            r = r + smoothness(now, before, task.smoothness)
+        if wp.static(with_time):
+            r = r + time_cost(task.time_cost)
+        if wp.static(with_energy):
+            r = r + motor_energy(level, task.energy_cost, task.decision_period)
+
+        length = course.episode_length[env] + 1
+        total = course.episode_return[env] + r
+        late = (not ended) and length >= task.max_episode_length
+        ends.reward[env] = r
+        ends.terminated[env] = ended
+        ends.time_out[env] = late
+        ends.done[env] = ended or late
+        course.previous_distance[env] = distance
+        course.target_index[env] = wp.min(index, task.route_length - 1)
+        course.target_world[env] = course.origin[env] + course.route[env, wp.min(index, task.route_length - 1)]
+        course.episode_length[env] = length
+        course.episode_return[env] = total
+        if ended or late:
+            ends.reset_mask[env] = 1
+            ends.final_return[env] = total
+            ends.final_length[env] = length
+            ends.final_status[env] = flags
+            ends.final_waypoints[env] = index
+            if success:
+                ends.final_success[env] = 1.0
+            else:
+                ends.final_success[env] = 0.0
+        else:
+            ends.reset_mask[env] = 0
+
+    return evaluate
+
+
+def evaluate_kernel_for(task) -> wp.Kernel:
+    """:func:`evaluate_kernel` of the reward terms ``task`` (a ``TaskConfig``) selects (``reward_terms``)."""
+    return evaluate_kernel(reward_terms(task))
+
+
+@functools.cache
+def observe_kernel(observation_set: str, reef: bool) -> wp.Kernel:
+    """The kernel of the policy's observation (the ``observation_set``'s block, then, with ``reef``, the reef
+    level) and the critic's (the policy's values, then ``PRIVILEGED_BLOCK``), built once per selection; a lidar's
+    sectors come after each (``ObstacleCourse.append_observation``). Its key names the selection
+    (``observe_plus_reef``).
+
+    Launched over the environments with (task: TaskParameters, boats: BoatView, course: Course), writing
+    policy (N, >= the policy's values) and critic (N, >= those + ``PRIVILEGED_OBS``)."""
+    if observation_set not in SET_COLUMNS:
+        raise ValueError(f"observe_kernel: unknown observation set {observation_set!r}; the sets: "
+                         f"{', '.join(SET_COLUMNS)}")
+    set_columns = SET_COLUMNS[observation_set]
+    with_reef = bool(reef)
+    policy_values = len(SET_BLOCKS[observation_set]) + int(with_reef)
+    name = f"observe_{observation_set}" + ("_reef" if with_reef else "")
+
+    @wp.kernel(enable_backward=False, module="unique", name=name)
+    def observe(
+        task: TaskParameters,
+        boats: BoatView,
+        course: Course,
+        policy: wp.array2d(dtype=float),
+        critic: wp.array2d(dtype=float),
+    ):
+        env = wp.tid()
+        rotation = boats.orientation[env]
+        heading = heading_of(rotation)
+        target = course.target_world[env]
+        to_target = planar(target - boats.position[env])
+        distance = wp.length(to_target)
+        bearing = wrap_angle(wp.atan2(to_target[1], to_target[0]) - heading)
+        leg = wp.length(planar(target - (course.origin[env] + course.leg_start[env])))
+        lost_distance = leg + task.lost_margin
+        p = wp.static(set_columns)(policy, env, 0, boats, course, distance, bearing, lost_distance)
+        if wp.static(with_reef):
+            p = reef_column(policy, env, p, boats, task.reef_levels)
+        for k in range(wp.static(policy_values)):
+            critic[env, k] = policy[env, k]
+        privileged_columns(critic, env, wp.static(policy_values), boats, course, distance, bearing, lost_distance,
+                           heading, task.route_length)
+
+    return observe
+
+
+def observe_kernel_for(task) -> wp.Kernel:
+    """:func:`observe_kernel` of ``task``'s (a ``TaskConfig``) observation set and reef rule."""
+    return observe_kernel(ObservationSet(task.observation).value, task.reef is not None)
 
 
 @wp.kernel(enable_backward=False)

@@ -8,7 +8,7 @@ simulator (``ocean-warp ros``) and the real boat.
 It subscribes to ``<namespace>/mission_control/observations`` (std_msgs/Float32MultiArray, the seed's 9 raw
 values: distance to the waypoint [m], its bearing from the bow [deg, positive to port], speed [m/s], apparent
 wind speed [m/s] and angle [deg], boom [deg], rudder [deg], propeller level, roll [deg]), builds the policy's
-observation from the first five exactly as the seed task scales them (``envs/tasks/task_kernels.observe``):
+observation from the first five exactly as the seed task scales them (``envs/tasks/observation_blocks.seed_columns``):
 
     2 d / d_lost - 1,  bearing / 180,  u / 5 - 1,  apparent wind speed / 15 - 1,  apparent wind angle / 180
 

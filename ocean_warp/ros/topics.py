@@ -52,7 +52,7 @@ at z = 0), ``base_link`` the boat's body frame, FLU (x forward, y to port, z up;
 lidar's ``lidar_link`` its sensor frame (beams' azimuths counter-clockwise from its x), the camera's
 ``camera_link`` its link frame (x along the view) and ``camera_optical_frame`` the image's (z forward, x right,
 y down). Where the values come from: the seed's observations, the seed's wind, true wind and tf from the
-simulator's truth (as the seed's task sees it, ``envs/tasks/task_kernels.observe``), the current from the
+simulator's truth (as the seed's task sees it, ``envs/tasks/observation_blocks.seed_columns``), the current from the
 simulator's truth too (no sensor measures it); the GNSS fix, the IMU's
 rates and accelerations and the apparent wind from the noisy sensor readings (``ocean_warp.sensors``, held
 between refreshes at the sensors' rates), with their configured standard deviations (times the boat's noise
@@ -153,7 +153,7 @@ SEED_OBSERVATION = ("distance_m", "bearing_deg", "speed_m_s", "apparent_wind_spe
 positive to port, in [-180, 180); surge speed [m/s]; apparent wind speed [m/s] and angle [deg] at the masthead
 (where it comes from, from the bow, positive to port); boom angle [deg], positive with the boom to port;
 rudder angle [deg], positive turning the boat to port; the propeller level the last decision applied; roll
-[deg], positive heeling to starboard. All from the truth, as the seed task's ``observe`` reads them."""
+[deg], positive heeling to starboard. All from the truth, as the seed task's ``seed_columns`` reads them."""
 
 _OPTICAL_IN_LINK = (-0.5, 0.5, -0.5, 0.5)
 """camera_link -> camera_optical_frame (x, y, z, w): the optical z along the link's x, x along -y, y along -z."""
