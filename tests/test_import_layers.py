@@ -142,8 +142,6 @@ KNOWN_VESSEL_IMPORTS = {
                                    for name in ("BODY", "BOOM", "REEF", "RUDDER", "BoatParts")},
     "ocean_warp.usd.recorder": {"ocean_warp.eboat.parts.eboat_parts"},
     "ocean_warp.usd.stage_options": {"ocean_warp.eboat.eboat.EBoatConfig"},
-    # Contact's default capsule, the E-Boat's hull (a vessel's CollisionShape is not wired into contact yet).
-    "ocean_warp.contact": {"ocean_warp.eboat.parts.eboat_parts"},
 }
 """Imports of ``ocean_warp.eboat`` still made by the vessel-blind modules, each with why (issue 35)."""
 

@@ -13,10 +13,14 @@ from ocean_warp.ocean_config import require_significant_wave_height
 
 from ..controllers.line_following import LineFollowingConfig
 from ..controllers.sailing_autopilot import AutopilotConfig
-from ..registration import DEFAULT_TASK, task_name
+from ..registration import DEFAULT_TASK, make_task_config, task_name
+from ..env_factory import make_env
 from ..sailing_env import SailingEnv
+from ..vrx.task_config import VrxTask, VrxTaskConfig
 from ..tasks.task_configs import TaskConfig
 from ..training.policy_io import Policy, load_policy
+from ..controllers.los_guidance import LosGuidanceController
+from ..controllers.station_keeping import StationKeepingController
 from .controllers import AutopilotController, PolicyController
 from .presets import evaluation_task
 from .results_io import MissionEvaluation
@@ -70,17 +74,20 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     controllers: list = []
     if policy is not None:
         controllers.append(PolicyController(policy))
-    if autopilot is not False and autopilot is not None:
+    task = DEFAULT_TASK if task is None else task
+    vrx = isinstance(make_task_config(task) if isinstance(task, str) else task, VrxTaskConfig)
+    if autopilot is not False and autopilot is not None and vrx:
+        controllers.append(vrx_baseline(make_task_config(task) if isinstance(task, str) else task))
+    elif autopilot is not False and autopilot is not None:
         if isinstance(autopilot, str):
             controllers.append(AutopilotController(autopilot=autopilot))
         else:
             controllers.append(AutopilotController(None if autopilot is True else autopilot))
     if not controllers:
         raise ValueError("evaluate_mission: nothing to evaluate (no policy and autopilot=False)")
-    task = DEFAULT_TASK if task is None else task
     config = evaluation_task(task, sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit,
                              observation=None if policy is None else policy.observation, reef=reef)
-    env = SailingEnv(config, int(runs), device=device, seed=seed)
+    env = make_env(config, int(runs), device=device, seed=seed)
     log = None
     if record is not None:
         from ..ros.mcap_log import McapRecorder
@@ -101,6 +108,14 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
                 "sea_state": config.simulator.ocean.significant_wave_height, "wind": low if low == high else None,
                 "seed": int(seed), "device": str(env.device), "time_limit": config.episode_time}
     return MissionEvaluation(task=config, settings=settings, results=results)
+
+
+def vrx_baseline(task: VrxTaskConfig):
+    """The classical controller of one of VRX's tasks: PID station keeping for station keeping, line-of-sight
+    guidance for wayfinding and the path."""
+    if task.kind is VrxTask.STATION_KEEPING:
+        return StationKeepingController()
+    return LosGuidanceController()
 
 
 def _logging_callbacks(log, env: SailingEnv, name: str) -> dict:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 
 from ..registration import DEFAULT_TASK, make_task_config
+from ..vrx.task_config import VrxTaskConfig
 from ..tasks.task_configs import BCDACA_ROUTE, MissionConfig, ObservationSet, TaskConfig
 
 __all__ = ["evaluation_task", "mission_task", "course_text", "wind_text", "conditions_text"]
@@ -29,11 +30,12 @@ def evaluation_task(task: TaskConfig | str = DEFAULT_TASK, *, sea_state: float |
     only). Gusts, wind directions and the rest of the start stay the task's. Invalid values raise the configs'
     ``ValueError`` (an unknown id: one naming the known ones)."""
     task = make_task_config(task) if isinstance(task, str) else task
+    if isinstance(task, VrxTaskConfig):
+        if reef is not None:
+            raise ValueError(f"evaluation_task: reef {reef!r} given, but VRX's {task.kind.value} has no sail")
+        return vrx_evaluation_task(task, sea_state=sea_state, wind=wind, seed=seed, time_limit=time_limit)
     if not isinstance(task, TaskConfig):
-        if hasattr(task, "vessel"):
-            raise ValueError(f"evaluation_task: {task.kind.value} is one of VRX's tasks, which eval does not sail "
-                             "yet; use python -m benchmarks.studies.wamv_tasks")
-        raise ValueError(f"evaluation_task: task must be a TaskConfig or a task id, got {type(task).__name__}")
+        raise ValueError(f"evaluation_task: task must be a task config or a task id, got {type(task).__name__}")
     if reef is not None:
         if task.reef is None:
             raise ValueError(f"evaluation_task: reef {reef!r} given, but {type(task).__name__} sails without a reef "
@@ -60,10 +62,25 @@ def mission_task(*, sea_state: float = 0.3, wind: float = 10.0, seed: int = 0, t
                            observation=observation)
 
 
-def course_text(task: TaskConfig) -> str:
+def vrx_evaluation_task(task: VrxTaskConfig, *, sea_state: float | None = None, wind: float | None = None,
+                        seed: int = 0, time_limit: float | None = None) -> VrxTaskConfig:
+    """One of VRX's tasks as ``ocean-warp eval`` sails it: its vessel's sea at ``sea_state`` [m] with seed ``seed``,
+    every start's mean wind at ``wind`` [m/s], the time limit ``time_limit`` [s] (None: each the task's)."""
+    vessel = task.vessel
+    config = dataclasses.replace(vessel.config, ocean=_replace_given(vessel.config.ocean,
+                                                                      significant_wave_height=sea_state, seed=seed))
+    start = _replace_given(task.start, wind_speed=None if wind is None else (wind, wind))
+    return _replace_given(task, vessel=type(vessel)(config), start=start, episode_time=time_limit)
+
+
+def course_text(task) -> str:
     """What a task's runs sail, in words: "BCDACA", "one waypoint per run" or "a route of R waypoints",
     followed by "through buoys and piles" for a task with obstacles and "under sail alone" for a task
-    without propeller."""
+    without propeller; VRX's: "station keeping", "wayfinding through G goal poses", "G gates in order"."""
+    if isinstance(task, VrxTaskConfig):
+        return {"station_keeping": f"station keeping ({task.vessel.name})",
+                "wayfinding": f"wayfinding through {task.goals} goal poses ({task.vessel.name})",
+                "follow_path": f"{task.goals} gates in order ({task.vessel.name})"}[task.kind.value]
     if task.route is None:
         course = "one waypoint per run"
     elif tuple(task.route) == BCDACA_ROUTE:

@@ -188,6 +188,21 @@ class VrxTaskConfig:
         return self.goals
 
     @property
+    def start_point(self) -> tuple[float, float]:
+        """Where each boat starts, from its environment's origin [m]."""
+        return (0.0, 0.0)
+
+    @property
+    def route(self) -> None:
+        """None: every episode draws its own goals (as a task with a drawn waypoint has no fixed route)."""
+        return None
+
+    @property
+    def reach_radius(self) -> float:
+        """The pose error under which a goal counts as reached [m] (drawn around goals in plots)."""
+        return self.reach_error
+
+    @property
     def num_actions(self) -> int:
         return len(self.vessel.actions)
 

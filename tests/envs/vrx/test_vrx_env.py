@@ -196,3 +196,25 @@ def test_final_score_is_vrx_rule_over_the_episode(vessel, device, rng, kind, goa
     errors = np.array(errors)  # (decisions, N, goals)
     expected = errors[:, :, 0].mean(axis=0) if kind == "station_keeping" else errors.min(axis=0).mean(axis=1)
     np.testing.assert_allclose(b.final_score.cpu().numpy(), expected, rtol=2e-4, atol=2e-4)
+
+
+@pytest.mark.parametrize("task_id, baseline", [("WamvStationKeeping-v0", "pid-station-keeping"),
+                                               ("WamvWayfinding-v0", "los-guidance")])
+def test_eval_of_a_vrx_task_writes_vrx_scores(task_id, baseline, tmp_path):
+    """``ocean-warp eval --task <VRX task>``: the shipped policy and the task's classical baseline, each run's VRX
+    score in runs.csv and their mean per controller in results.csv."""
+    import csv
+
+    from ocean_warp.envs.apps.evaluation import main
+
+    assert main(["--task", task_id, "--runs", "2", "--time-limit", "3", "--out", str(tmp_path), "--no-progress",
+                 "--device", "cpu"]) == 0
+    with open(tmp_path / "results.csv") as handle:
+        table = {row["controller"]: row for row in csv.DictReader(handle)}
+    with open(tmp_path / "runs.csv") as handle:
+        runs = list(csv.DictReader(handle))
+    assert set(table) == {"policy", baseline}
+    for name, row in table.items():
+        scores = [float(run["vrx_score"]) for run in runs if run["controller"] == name]
+        assert len(scores) == 2 and all(math.isfinite(v) and v >= 0.0 for v in scores)
+        assert float(row["vrx_score"]) == pytest.approx(np.mean(scores), rel=1e-4)
