@@ -228,11 +228,15 @@ def mission_practice(base: MissionConfig | None = None, wind_speed: tuple[float,
                                                   start=start))
 
 
+VRX_SEA = CurriculumConfig(sea_states=(0.72,), randomize=True)
+"""VRX 2023's seas: each iteration draws Hs uniformly in [0, 0.72] m (calm to VRX's gain 0.8 at 6 s)."""
+
+
 def _wamv_agent(task_id: str) -> TrainConfig:
-    """A VRX task's training on the WAM-V: 0.5 s decisions, 32 a segment, 4096 envs on a GPU."""
+    """A VRX task's training on the WAM-V: 0.5 s decisions, 32 a segment, 4096 envs on a GPU, VRX's seas."""
     return TrainConfig(task=task_id, train_task=make_task_config(task_id), num_envs_cpu=256, num_envs_cuda=4096,
                        steps_per_env=32, iterations=300, save_interval=50,
-                       ppo=PpoConfig(hidden_dims=(64, 64), entropy_coef=0.002))
+                       ppo=PpoConfig(hidden_dims=(64, 64), entropy_coef=0.002), curriculum=VRX_SEA)
 
 
 def wamv_station_keeping_agent() -> TrainConfig:

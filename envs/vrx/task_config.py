@@ -75,6 +75,10 @@ class VrxStartConfig:
     """Distance from the start to the first goal [m]."""
     goal_spacing: tuple[float, float] = (10.0, 20.0)
     """Distance between consecutive goals (wayfinding) or gates (the path) [m]."""
+    goal_bearing_deg: tuple[float, float] = (-180.0, 180.0)
+    """Direction of the first goal from the start, from the boat's start heading [deg]."""
+    leg_turn_deg: tuple[float, float] = (-180.0, 180.0)
+    """Change of direction from one leg to the next (goal to goal, gate to gate) [deg]."""
     wind_speed: tuple[float, float] = (0.0, 5.0)
     """Mean true wind speed [m/s]."""
     wind_direction_deg: tuple[float, float] = (-180.0, 180.0)
@@ -93,6 +97,7 @@ class VrxStartConfig:
     def __post_init__(self):
         owner = "VrxStartConfig"
         for name, low, high, unit in (("goal_distance", 0.0, 1e4, " [m]"), ("goal_spacing", 0.0, 1e4, " [m]"),
+                                      ("goal_bearing_deg", -360, 360, " [deg]"), ("leg_turn_deg", -360, 360, " [deg]"),
                                       ("wind_speed", 0.0, 60.0, " [m/s]"), ("wind_direction_deg", -360, 360, " [deg]"),
                                       ("gust_scale", 0.0, 10.0, ""), ("current_speed", 0.0, 5.0, " [m/s]"),
                                       ("current_direction_deg", -360, 360, " [deg]"),
@@ -125,6 +130,8 @@ class VrxTaskConfig:
     """Simulated time of one decision [s]."""
     episode_time: float = 60.0
     """The episode's time limit [s]."""
+    gate_width: float = 20.0
+    """Between a gate's two buoys [m] (VRX 2023: 15.8 to 24.2 m)."""
     reach_error: float = 1.0
     """Pose error under which a wayfinding goal counts as reached and the next one is shown [m]."""
     lost_distance: float = 60.0
@@ -154,7 +161,7 @@ class VrxTaskConfig:
         object.__setattr__(self, "goals", require_int_in_range(owner, "goals", self.goals, 1, 16))
         if self.kind is VrxTask.STATION_KEEPING and self.goals != 1:
             raise ValueError(f"{owner}.goals must be 1 for station keeping, got {self.goals}")
-        for name, unit in (("decision_period", " [s]"), ("episode_time", " [s]"), ("reach_error", " [m]"),
+        for name, unit in (("decision_period", " [s]"), ("episode_time", " [s]"), ("reach_error", " [m]"), ("gate_width", " [m]"),
                            ("lost_distance", " [m]"), ("position_scale", " [m]")):
             object.__setattr__(self, name, require_positive(owner, name, getattr(self, name), unit=unit))
         dt = self.simulator.dt

@@ -1,30 +1,75 @@
 """The registered VRX tasks' default configs (``WamvStationKeeping-v0``, ``WamvWayfinding-v0``,
-``WamvFollowPath-v0``): the WAM-V, VRX's task, and each episode drawn in the ranges below."""
+``WamvFollowPath-v0``): the WAM-V and each episode drawn in VRX 2023's ranges
+(``ocean_warp.envs.tasks.vrx_conditions.VrxConditions``, each with its source).
+
+Where they differ from VRX: the wind blows from any direction (VRX's worlds use three), goals and gates count
+a fixed number per task (VRX: 3-5 waypoints, 3-9 gates), gates are 20 m wide (VRX: 15.8-24.2 m), training
+episodes are shorter than VRX's 300 s (``ocean-warp eval --time-limit 300`` scores as VRX does), and the sea is
+one per batch (its height is the vessel's ocean's; training draws it per iteration in VRX's 0-0.72 m:
+``training.agents``). VRX has no current; neither do these.
+"""
 
 from __future__ import annotations
 
-from .task_config import VrxStartConfig, VrxTask, VrxTaskConfig
+import dataclasses
+import math
 
-__all__ = ["station_keeping_task", "wayfinding_task", "follow_path_task"]
+from ocean_warp.wind import WindConfig
+
+from ..tasks.vrx_conditions import VrxConditions
+from .path_course_config import PathCourseConfig
+from .task_config import VrxStartConfig, VrxTask, VrxTaskConfig, wamv_vessel
+
+__all__ = ["station_keeping_task", "wayfinding_task", "follow_path_task", "start_from"]
+
+
+def start_from(conditions: VrxConditions) -> VrxStartConfig:
+    """The episode starts of ``conditions``: its wind (gusts up to its largest standard deviation, drawn per
+    episode as a factor on it), the first goal's distance and its bearing off the start heading, no current."""
+    deg = math.degrees
+    gusts = conditions.wind_gust_std[1]
+    return VrxStartConfig(goal_distance=conditions.goal_distance,
+                          goal_bearing_deg=(deg(conditions.goal_bearing[0]), deg(conditions.goal_bearing[1])),
+                          wind_speed=conditions.wind_speed,
+                          gust_scale=(0.0, 1.0) if gusts > 0.0 else (1.0, 1.0),
+                          current_speed=conditions.current_speed)
+
+
+def _vessel(conditions: VrxConditions):
+    """The WAM-V on a 0.3 m sea, with VRX's gusts (their largest standard deviation, VRX's 2 s time constant)."""
+    vessel = wamv_vessel(0.3)
+    wind = WindConfig(speed=0.0, gust_speed_std=conditions.wind_gust_std[1],
+                      gust_speed_time=conditions.wind_gust_time_constant)
+    return type(vessel)(dataclasses.replace(vessel.config, wind=wind))
 
 
 def station_keeping_task() -> VrxTaskConfig:
-    """Hold a goal pose 5-12 m from the start (VRX 2023's 5.9-11.9 m) for 60 s (VRX scores 300 s: evaluate with a
-    longer time limit), in 0-7 m/s of wind (VRX's 0, 5 or 7 m/s) and up to 0.3 m/s of current, on a 0.3 m sea."""
-    start = VrxStartConfig(goal_distance=(5.0, 12.0), wind_speed=(0.0, 7.0), current_speed=(0.0, 0.3))
-    return VrxTaskConfig(kind=VrxTask.STATION_KEEPING, goals=1, episode_time=60.0, start=start)
+    """Reach and hold a goal pose 5-12 m away, within 1 rad of the start heading (VRX 2023: 5.9-11.9 m), in 0-7 m/s
+    of wind with gusts up to 2 m/s; 60 s training episodes (VRX scores 300 s)."""
+    conditions = VrxConditions.station_keeping()
+    start = dataclasses.replace(start_from(conditions), goal_spacing=(0.0, 0.0))
+    return VrxTaskConfig(kind=VrxTask.STATION_KEEPING, vessel=_vessel(conditions), goals=1, episode_time=60.0,
+                         start=start)
 
 
 def wayfinding_task() -> VrxTaskConfig:
-    """Visit 4 goal poses (the first 10-20 m away, then 10-20 m apart) within 150 s; a goal counts as reached
-    within a pose error of 1 m."""
-    start = VrxStartConfig(goal_distance=(10.0, 20.0), goal_spacing=(10.0, 20.0), wind_speed=(0.0, 5.0),
-                           current_speed=(0.0, 0.3))
-    return VrxTaskConfig(kind=VrxTask.WAYFINDING, goals=4, episode_time=150.0, start=start)
+    """Visit 4 goal poses (VRX 2023: 3-5) on legs of 11-40 m (VRX: 11-60 m) turning any way, in 0-8 m/s of wind
+    with gusts up to 2 m/s, within 240 s; a goal counts as reached within a pose error of 1 m."""
+    conditions = VrxConditions.wayfinding(goal_distance=(11.0, 40.0))
+    start = dataclasses.replace(start_from(conditions), goal_spacing=conditions.goal_distance,
+                                leg_turn_deg=(-180.0, 180.0))
+    return VrxTaskConfig(kind=VrxTask.WAYFINDING, vessel=_vessel(conditions), goals=4, episode_time=240.0,
+                         start=start)
 
 
 def follow_path_task() -> VrxTaskConfig:
-    """Pass 4 gates in order (10 m wide, the first 10-20 m away, then 15-25 m apart) within 150 s."""
-    start = VrxStartConfig(goal_distance=(10.0, 20.0), goal_spacing=(15.0, 25.0), wind_speed=(0.0, 5.0),
-                           current_speed=(0.0, 0.3))
-    return VrxTaskConfig(kind=VrxTask.FOLLOW_PATH, goals=4, episode_time=150.0, start=start, lost_distance=60.0)
+    """Pass 4 gates 20 m wide in order (VRX 2023: 3-9 gates, 15.8-24.2 m), the first 19-31 m away within 0.7 rad
+    of the start heading, then 25-40 m apart (VRX: 25-66 m) with turns of up to 97 deg, among 6 obstacle buoys
+    (VRX: 1-17), in 0-9 m/s of wind with gusts up to 5 m/s, within 240 s."""
+    conditions = VrxConditions.follow_path(gate_spacing=(25.0, 40.0))
+    turn = math.degrees(conditions.gate_turn[1])
+    start = dataclasses.replace(start_from(conditions), goal_spacing=conditions.gate_spacing,
+                                leg_turn_deg=(-turn, turn))
+    return VrxTaskConfig(kind=VrxTask.FOLLOW_PATH, vessel=_vessel(conditions), goals=4, episode_time=240.0,
+                         start=start, gate_width=20.0, lost_distance=80.0,
+                         path_course=PathCourseConfig(obstacles=6))

@@ -27,10 +27,8 @@ from .task_config import VrxTask, VrxTaskConfig
 from .vrx_kernels import (POLICY_BASE, PRIVILEGED, VesselStartRows, VrxCourse, VrxParameters, VrxStartDistribution,
                           vrx_draw_starts, vrx_evaluate, vrx_observe)
 
-__all__ = ["VrxEnv", "GATE_HALF_WIDTH"]
+__all__ = ["VrxEnv"]
 
-GATE_HALF_WIDTH = 5.0
-"""Half the width between a gate's two buoys [m]."""
 _SEARCH = 10.0
 """How far the gap to the nearest buoy is looked for [m]."""
 _KIND = {VrxTask.STATION_KEEPING: 0, VrxTask.WAYFINDING: 1, VrxTask.FOLLOW_PATH: 2}
@@ -119,7 +117,7 @@ class VrxEnv(BatchedVesselEnv):
         """The :class:`~ocean_warp.envs.vrx.path_course.PathCourse` (gates' buoys, obstacles, contact) of the path
         with ``path_course``; None otherwise."""
         self._hold([] if self.obstacles is None else [self.obstacles])
-        self.scorer = VrxScorer(self, GATE_HALF_WIDTH)
+        self.scorer = VrxScorer(self, 0.5 * task.gate_width)
         """What keeps VRX's score of each episode and writes ``final_score`` (``ocean_warp.envs.vrx.scoring``)."""
 
         view, state = wp.to_torch, self.simulator.state
@@ -158,7 +156,7 @@ class VrxEnv(BatchedVesselEnv):
         state = self.simulator.state
         self._sense_components()
         wp.launch(vrx_evaluate, dim=self.num_envs, device=self.device,
-                  inputs=[self.parameters, GATE_HALF_WIDTH, self.actions, state.status, state.position,
+                  inputs=[self.parameters, 0.5 * self.task.gate_width, self.actions, state.status, state.position,
                           state.orientation, self._course],
                   outputs=[self.reward, self.terminated, self.time_out, self.done, self.reset_mask, self.final_return,
                            self.final_length, self.final_success, self.final_status, self.final_waypoints])
@@ -213,7 +211,7 @@ def _path_course(task: VrxTaskConfig, simulator, origin: wp.array, clearance: wp
     """The buoys and contact of the path (a task of kind ``follow_path`` with ``path_course``), else None."""
     if task.kind is not VrxTask.FOLLOW_PATH or task.path_course is None:
         return None
-    return PathCourse(simulator, origin, task.path_course, gates=task.goals, gate_half_width=GATE_HALF_WIDTH,
+    return PathCourse(simulator, origin, task.path_course, gates=task.goals, gate_half_width=0.5 * task.gate_width,
                       vessel=task.vessel, clearance=clearance, search=_SEARCH)
 
 
@@ -221,6 +219,8 @@ def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDis
     s, d, rad = task.start, VrxStartDistribution(), math.radians
     d.goal_distance_low, d.goal_distance_high = s.goal_distance
     d.goal_spacing_low, d.goal_spacing_high = s.goal_spacing
+    d.goal_bearing_low, d.goal_bearing_high = rad(s.goal_bearing_deg[0]), rad(s.goal_bearing_deg[1])
+    d.leg_turn_low, d.leg_turn_high = rad(s.leg_turn_deg[0]), rad(s.leg_turn_deg[1])
     d.wind_speed_low, d.wind_speed_high = s.wind_speed
     d.wind_direction_low, d.wind_direction_high = rad(s.wind_direction_deg[0]), rad(s.wind_direction_deg[1])
     d.gust_scale_low, d.gust_scale_high = s.gust_scale

@@ -61,6 +61,12 @@ class VrxStartDistribution:
     goal_distance_high: float
     goal_spacing_low: float
     goal_spacing_high: float
+    goal_bearing_low: float
+    """[rad] from the start heading"""
+    goal_bearing_high: float
+    leg_turn_low: float
+    """[rad] from the previous leg's direction"""
+    leg_turn_high: float
     wind_speed_low: float
     wind_speed_high: float
     wind_direction_low: float
@@ -313,8 +319,9 @@ def vrx_draw_starts(
 ):
     """A new episode for every environment whose ``reset_mask`` is set, from its own random streams (seed,
     environment ``first_env`` + index, episode number): the boat at the origin with a random heading, the goals
-    (the first at the start distance in a random direction, each next at the spacing from the one before, each
-    with a random heading; a gate faces from the previous gate), and the wind, current and sensor noise from a
+    (the first at the start distance, its bearing off the start heading in the start's range; each next at the
+    spacing from the one before, its leg turned from the leg before within the turn range; each with a random
+    heading, or, a gate, facing along its leg), and the wind, current and sensor noise from a
     stream of their own. The last actions are zeroed."""
     env = wp.tid()
     if reset_mask[env] == 0:
@@ -324,14 +331,19 @@ def vrx_draw_starts(
     state = stream_state(seed[0], VRX_START, episode, first_env + env)
     heading = uniform(wp.randf(state), -PI, PI)
     previous = wp.vec3(0.0, 0.0, 0.0)
+    bearing = heading
     for g in range(p.goal_count):
         low = start.goal_spacing_low
         high = start.goal_spacing_high
+        turn_low = start.leg_turn_low
+        turn_high = start.leg_turn_high
         if g == 0:
             low = start.goal_distance_low
             high = start.goal_distance_high
+            turn_low = start.goal_bearing_low
+            turn_high = start.goal_bearing_high
         distance = uniform(wp.randf(state), low, high)
-        bearing = uniform(wp.randf(state), -PI, PI)
+        bearing = wrap_angle(bearing + uniform(wp.randf(state), turn_low, turn_high))
         goal_heading = uniform(wp.randf(state), -PI, PI)
         x = previous[0] + distance * wp.cos(bearing)
         y = previous[1] + distance * wp.sin(bearing)

@@ -12,7 +12,6 @@ import ocean_warp as ow
 from ocean_warp.contact import ContactConfig
 from ocean_warp.envs.protocol import EnvBuffers
 from ocean_warp.envs.vrx import PathCourseConfig, VrxEnv, VrxStartConfig, VrxTaskConfig
-from ocean_warp.envs.vrx.vrx_env import GATE_HALF_WIDTH
 
 CALM = VrxStartConfig(wind_speed=(0.0, 0.0))
 
@@ -32,13 +31,14 @@ def test_gate_buoys_sit_either_side_of_each_gate(device, rng):
     """Gate g's buoys are table rows 2g, 2g + 1: the gate's centre plus and minus the half width along the
     normal to its heading (port, then starboard); the scene's rows stand at the origin plus them."""
     config = PathCourseConfig()
-    env = VrxEnv(path_task(), 4, device=device, seed=int(rng.integers(1 << 30)))
+    task = path_task()
+    env = VrxEnv(task, 4, device=device, seed=int(rng.integers(1 << 30)))
     route = env.buffers.route.cpu().numpy()  # (N, G, 3): x, y, heading
     table = env.buffers.obstacles.cpu().numpy()
     assert table.shape == (4, 2 * 3 + config.obstacles, 4)
     normal = np.stack([-np.sin(route[..., 2]), np.cos(route[..., 2])], axis=-1)
-    np.testing.assert_allclose(table[:, 0:6:2, :2], route[..., :2] + GATE_HALF_WIDTH * normal, atol=1e-4)
-    np.testing.assert_allclose(table[:, 1:6:2, :2], route[..., :2] - GATE_HALF_WIDTH * normal, atol=1e-4)
+    np.testing.assert_allclose(table[:, 0:6:2, :2], route[..., :2] + 0.5 * task.gate_width * normal, atol=1e-4)
+    np.testing.assert_allclose(table[:, 1:6:2, :2], route[..., :2] - 0.5 * task.gate_width * normal, atol=1e-4)
     np.testing.assert_array_equal(table[:, :6, 2], np.float32(config.gate_buoy_radius))
     np.testing.assert_array_equal(table[:, :6, 3], 1.0)  # buoys
     course = env.obstacles
