@@ -111,11 +111,12 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
 
 
 def vrx_baseline(task: VrxTaskConfig):
-    """The classical controller of one of VRX's tasks: PID station keeping for station keeping, line-of-sight
-    guidance for wayfinding and the path."""
-    if task.kind is VrxTask.STATION_KEEPING:
-        return StationKeepingController()
-    return LosGuidanceController()
+    """The classical controller of one of VRX's tasks: PID station keeping for station keeping and for wayfinding
+    (each goal is a pose to reach, held until the env shows the next), line-of-sight guidance through the gates of
+    the path."""
+    if task.kind is VrxTask.FOLLOW_PATH:
+        return LosGuidanceController()
+    return StationKeepingController()
 
 
 def _logging_callbacks(log, env: SailingEnv, name: str) -> dict:

@@ -199,7 +199,8 @@ def test_final_score_is_vrx_rule_over_the_episode(vessel, device, rng, kind, goa
 
 
 @pytest.mark.parametrize("task_id, baseline", [("WamvStationKeeping-v0", "pid-station-keeping"),
-                                               ("WamvWayfinding-v0", "los-guidance")])
+                                               ("WamvWayfinding-v0", "pid-station-keeping"),
+                                               ("WamvFollowPath-v0", "los-guidance")])
 def test_eval_of_a_vrx_task_writes_vrx_scores(task_id, baseline, tmp_path):
     """``ocean-warp eval --task <VRX task>``: the shipped policy and the task's classical baseline, each run's VRX
     score in runs.csv and their mean per controller in results.csv."""
