@@ -51,8 +51,8 @@ def observation_text(observation: str, num_obs: int) -> str:
 def observation_mismatch(policy: Policy, observation, num_obs: int) -> str | None:
     """None where ``policy`` reads what a task gives (its observation set ``observation`` of ``num_obs``
     values in all); else both, in words, and what to do."""
-    known = {member.value for member in ObservationSet}
-    given = ObservationSet(observation).value if str(observation) in known else str(observation)
+    name = str(getattr(observation, "value", observation))  # an ObservationSet, its value, or another task's set
+    given = ObservationSet(name).value if name in {member.value for member in ObservationSet} else name
     if policy.observation == given and policy.num_obs == num_obs:
         return None
     return (f"the policy (trained on {policy.task}) reads {observation_text(policy.observation, policy.num_obs)}, "
