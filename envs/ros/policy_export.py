@@ -151,6 +151,13 @@ def observation_layout(task: str, observation: str, num_obs: int) -> list[str]:
     (``"name: scale [unit]"``, from ``ocean_warp.envs.tasks.observation_blocks``): the observation set's
     values, then those the task appends (its reef level, its lidar's sectors), as far as the task's default
     config says; values it cannot name are "value k (...)"."""
+    config = _default_task_config(task)
+    if getattr(config, "vessel", None) is not None:  # one of VRX's tasks: its block and the vessel's actions
+        from ..vrx.observation_blocks import vrx_policy_layout
+
+        layout = [column.text() for column in vrx_policy_layout(config.vessel)]
+        if len(layout) == num_obs:
+            return layout
     block = SET_BLOCKS.get(observation)
     if block is None or num_obs < len(block):
         return [f"value {k} (observation set {observation!r}: not described here)" for k in range(num_obs)]
@@ -175,8 +182,11 @@ def _appended_layout(task: str, first: int, count: int) -> list[str]:
 
 
 def action_meaning(task: str) -> list[str]:
-    """What each of the three actions commands, once clipped to [-1, 1] (``task_configs``' module docstring)."""
+    """What each action commands, once clipped to [-1, 1]: the E-Boat's three (``task_configs``' module docstring),
+    or the vessel's of one of VRX's tasks (``Vessel.actions``)."""
     config = _default_task_config(task)
+    if getattr(config, "vessel", None) is not None:
+        return [f"a{k} {spec.name}: {spec.meaning}" for k, spec in enumerate(config.vessel.actions)]
     propeller = ("a0 propeller level int(5 a0), truncated toward zero: -5 to +5"
                  + ("" if config is None or config.propeller else f" (ignored: {task} sails without propeller)"))
     return [propeller, "a1 sheet: the largest boom angle either side, (a1 + 1) 45 deg",

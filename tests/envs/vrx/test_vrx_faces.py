@@ -37,10 +37,13 @@ def test_gymnasium_checker_passes_on_a_wamv_task():
 def test_sb3_ppo_trains_on_a_wamv_task(one_torch_thread):
     pytest.importorskip("stable_baselines3")
     from stable_baselines3 import PPO
-    from stable_baselines3.common.env_checker import check_env as sb3_check_env  # noqa: F401 (importable)
+    from stable_baselines3.common.env_checker import check_env as sb3_check_env
 
     from ocean_warp.envs.interfaces.sb3_env import Sb3VecEnv
 
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the unbounded observation Box is deliberate
+        sb3_check_env(gym.make("ocean_warp/WamvWayfinding-v0").unwrapped, warn=False)
     env = Sb3VecEnv(short_wayfinding(), num_envs=4, seed=0)
     assert env.action_space.shape == (2,) and env.observation_space.shape == (12,)
     model = PPO("MlpPolicy", env, n_steps=16, batch_size=32, n_epochs=1, seed=0, device="cpu",
@@ -87,3 +90,20 @@ def test_a_wamv_task_over_workers_matches_one_process():
                 assert bit_equal(getattr(single.buffers, name), getattr(sharded.buffers, name)), (step, name)
         assert resets >= 4
         assert np.isfinite(single.buffers.policy_obs.numpy()).all()
+
+
+def test_the_exported_metadata_names_a_wamv_policys_values_and_actions(rng):
+    """The ROS/ONNX export reads the VRX block's names: one per value the env gives (12 on the WAM-V), the last
+    two the WAM-V's thrusters; and the goal's distance column is the distance numpy computes from the buffers."""
+    from ocean_warp.envs.ros.policy_export import action_meaning, observation_layout
+
+    layout = observation_layout("WamvStationKeeping-v0", "vrx", 12)
+    assert len(layout) == 12 and len(set(layout)) == 12
+    assert layout[4].startswith("goal_distance") and layout[10].startswith("last_left_thrust")
+    assert [text.split(":")[0] for text in action_meaning("WamvStationKeeping-v0")] == ["a0 left_thrust",
+                                                                                        "a1 right_thrust"]
+    env = VrxEnv(make_task_config("WamvStationKeeping-v0"), 3, device="cpu", seed=int(rng.integers(1 << 30)))
+    env.step(torch.as_tensor(rng.uniform(-1, 1, (3, 2)), dtype=torch.float32))
+    b = env.buffers
+    distance = np.hypot(*(b.target.numpy()[:, :2] - b.position.numpy()[:, :2]).T)
+    np.testing.assert_allclose(b.policy_obs.numpy()[:, 4], np.minimum(distance / 10.0, 5.0), atol=2e-4)
