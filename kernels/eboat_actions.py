@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import warp as wp
 
-__all__ = ["MAX_LEVEL", "RUDDER_LIMIT", "SHEET_HALF", "propeller_level", "commanded_level", "write_commands", "apply_eboat_actions"]
+__all__ = ["MAX_LEVEL", "RUDDER_LIMIT", "SHEET_HALF", "propeller_level", "commanded_level", "write_commands",
+           "apply_eboat_actions"]
 
 MAX_LEVEL = wp.constant(5)
 """The propeller's highest level (the seed's electric motor: -5 ... 5)."""

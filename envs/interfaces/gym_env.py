@@ -31,7 +31,8 @@ __all__ = ["SailingVectorEnv", "SailingEnvSingle", "action_space", "observation_
 
 
 def action_space(size: int = 3) -> gym.spaces.Box:
-    """One boat's action space: Box(-1, 1, (size,), float32); the E-Boat's 3 = propeller, sheet, rudder (each scaled; see
+    """One boat's action space: Box(-1, 1, (size,), float32); the E-Boat's 3 = propeller, sheet, rudder (each
+    scaled; see
     ``ocean_warp.envs.tasks``). The same for every task: one without propeller ignores the first."""
     return gym.spaces.Box(-1.0, 1.0, shape=(size,), dtype=np.float32)
 

@@ -16,7 +16,8 @@ class PathCourseConfig:
     """The buoys of the path and its obstacles. Invalid values raise ``ValueError`` naming the field."""
 
     gate_buoy_radius: float = 0.25
-    """Radius of a gate's buoys [m] (their centres are half ``VrxTaskConfig.gate_width`` either side of the gate's centre)."""
+    """Radius of a gate's buoys [m] (their centres are half ``VrxTaskConfig.gate_width`` either side of the gate's
+    centre)."""
     obstacles: int = 3
     """Obstacle buoys tried per episode (fewer where they find no clear place in ``attempts`` draws)."""
     obstacle_radius: float = 0.4

@@ -161,7 +161,8 @@ class VrxTaskConfig:
         object.__setattr__(self, "goals", require_int_in_range(owner, "goals", self.goals, 1, 16))
         if self.kind is VrxTask.STATION_KEEPING and self.goals != 1:
             raise ValueError(f"{owner}.goals must be 1 for station keeping, got {self.goals}")
-        for name, unit in (("decision_period", " [s]"), ("episode_time", " [s]"), ("reach_error", " [m]"), ("gate_width", " [m]"),
+        for name, unit in (("decision_period", " [s]"), ("episode_time", " [s]"), ("reach_error", " [m]"),
+                           ("gate_width", " [m]"),
                            ("lost_distance", " [m]"), ("position_scale", " [m]")):
             object.__setattr__(self, name, require_positive(owner, name, getattr(self, name), unit=unit))
         dt = self.simulator.dt

@@ -106,9 +106,11 @@ class VrxEnv(BatchedVesselEnv):
         """The vessel's action columns the task uses (None: all of them)."""
         self._course = VrxCourse()
         c = self._course
-        c.origin, c.route, c.target_index, c.target_world = self.origin, self.route, self.target_index, self.target_world
+        c.origin, c.route, c.target_index = self.origin, self.route, self.target_index
+        c.target_world = self.target_world
         c.previous_error, c.previous_position = zeros(n), zeros(n, wp.vec3)
-        c.episode_length, c.episode_return, c.episode_count = self.episode_length, self.episode_return, self.episode_count
+        c.episode_length, c.episode_return = self.episode_length, self.episode_return
+        c.episode_count = self.episode_count
         c.last_action = zeros((n, self.num_actions))
         self._start_rows = struct_from(VesselStartRows, self.simulator.start)
         self.clearance = wp.full(n, _SEARCH, dtype=float, device=device)
