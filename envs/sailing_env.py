@@ -38,7 +38,6 @@ from .tasks.task_kernels import (
     policy_observation_count,
 )
 from .decision_hook import DecisionHook
-from .protocol import EnvBuffers
 from .tasks.obstacle_course import ObstacleCourse
 from .vessel_env import BatchedVesselEnv
 from .tasks.task_configs import ObservationSet, TaskConfig
@@ -110,37 +109,12 @@ class SailingEnv(BatchedVesselEnv):
             route[:, :, :2] = np.array(task.route, dtype=np.float32)
         self.route = wp.array(route, dtype=wp.vec3, device=device)
         """(N, R) waypoints of each environment, from its origin [m]."""
-        self.actions = zeros((n, 3))
+        self._allocate_decision_arrays()
         self.last_action = zeros((n, 3))
-        self.policy_obs = zeros((n, self.num_policy_obs))
-        self.critic_obs = zeros((n, self.num_critic_obs))
-        self.final_policy_obs = zeros((n, self.num_policy_obs))
-        self.final_critic_obs = zeros((n, self.num_critic_obs))
-        self.reward = zeros(n)
-        self.terminated = zeros(n, wp.bool)
-        self.time_out = zeros(n, wp.bool)
-        self.done = zeros(n, wp.bool)
-        self.reset_mask = zeros(n, wp.int32)
-        self.episode_length = zeros(n, wp.int32)
-        self.episode_return = zeros(n)
-        self.episode_count = zeros(n, int)
-        self.target_index = zeros(n, int)
         self.leg_start = zeros(n, wp.vec3)
         self.previous_distance = zeros(n)
-        self.target_world = zeros(n, wp.vec3)
-        self.final_return = zeros(n)
-        self.final_length = zeros(n, wp.int32)
-        self.final_success = zeros(n)
-        self.final_status = zeros(n, int)
-        self.final_waypoints = zeros(n, int)
-        self.final_score = wp.full(n, float("nan"), dtype=float, device=device)
-        """(N,) the competition score of each environment's last ended episode (NaN: the task has none)."""
         self.propeller_level = zeros(n, self.simulator.control.propeller.dtype)
         """(N,) the propeller level the last decision applied (copied before a reset stops the motor)."""
-        self.final_position = zeros(n, wp.vec3)
-        """(N,) the boats' positions after the last decision's physics, before any reset [m]."""
-        self.final_orientation = zeros(n, wp.quat)
-        self._everyone = wp.ones(n, dtype=wp.int32, device=device)
         self._enabled_actions = wp.array([1 if task.propeller else 0, 1, 1], dtype=wp.int32, device=device)
         """The vessel's action columns the task uses: the propeller's is off under sail alone."""
         self.clearance = wp.full(n, task.reward.proximity_range, dtype=float, device=device)
@@ -158,22 +132,7 @@ class SailingEnv(BatchedVesselEnv):
         self._boats = struct_from(BoatView, self.simulator.state)
         self._start_rows = struct_from(StartRows, self.simulator.start)
 
-        view, state = wp.to_torch, self.simulator.state
-        self.buffers = EnvBuffers(
-            actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
-            final_policy_obs=view(self.final_policy_obs), final_critic_obs=view(self.final_critic_obs),
-            reward=view(self.reward), terminated=view(self.terminated), time_out=view(self.time_out),
-            done=view(self.done), episode_length=view(self.episode_length), episode_return=view(self.episode_return),
-            target=view(self.target_world), origin=view(self.origin), route=view(self.route),
-            waypoint_index=view(self.target_index), position=view(state.position),
-            orientation=view(state.orientation), velocity=view(state.velocity),
-            wind_velocity=view(state.wind_velocity), wind_direction=view(state.wind_mean_direction),
-            propeller_level=view(self.propeller_level), final_position=view(self.final_position),
-            final_orientation=view(self.final_orientation), final_return=view(self.final_return),
-            final_length=view(self.final_length), final_success=view(self.final_success),
-            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
-            final_score=view(self.final_score),
-            obstacles=self._obstacle_view())
+        self.buffers = self._bind_buffers(self._obstacle_view())
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`)."""
         self._start_replay()
         self.reset()

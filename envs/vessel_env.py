@@ -19,7 +19,7 @@ from ocean_warp.torch_streams import ordered_with_torch
 
 from .components import EnvComponent
 from .decision_hook import DecisionHook, HookChain
-from .protocol import episode_log
+from .protocol import EnvBuffers, episode_log
 
 __all__ = ["BatchedVesselEnv"]
 
@@ -27,7 +27,9 @@ __all__ = ["BatchedVesselEnv"]
 class BatchedVesselEnv:
     """The decision loop shared by the environments (see the module's docstring). A subclass sets ``task``,
     ``simulator`` (a :class:`~ocean_warp.vessel.VesselSimulator`), ``num_envs``, ``num_actions``,
-    ``steps_per_decision``, ``device``, ``buffers``, ``final_position`` and ``final_orientation``."""
+    ``num_policy_obs``, ``num_critic_obs``, ``steps_per_decision`` and ``device``, calls
+    :meth:`_allocate_decision_arrays`, sets ``origin``, ``route`` and ``propeller_level``, and binds ``buffers``
+    with :meth:`_bind_buffers`."""
 
     components: list[EnvComponent] = []
     """What lives inside the decision besides the task, hooks called in this order (:meth:`_hold`)."""
@@ -57,6 +59,58 @@ class BatchedVesselEnv:
     def _restart_component_streams(self) -> None:
         for component in self.components:
             component.restart_streams()
+
+    def _allocate_decision_arrays(self) -> None:
+        """The arrays of a decision every env has (N = ``num_envs``): actions, observations, rewards, episode
+        ends, the episode's bookkeeping and the last ended episode's results, and ``final_score`` at NaN (a task
+        without a competition score leaves it there)."""
+        n, device = self.num_envs, self.device
+        zeros = lambda shape, dtype=float: wp.zeros(shape, dtype=dtype, device=device)  # noqa: E731
+        self.actions = zeros((n, self.num_actions))
+        self.policy_obs = zeros((n, self.num_policy_obs))
+        self.critic_obs = zeros((n, self.num_critic_obs))
+        self.final_policy_obs = zeros((n, self.num_policy_obs))
+        self.final_critic_obs = zeros((n, self.num_critic_obs))
+        self.reward = zeros(n)
+        self.terminated = zeros(n, wp.bool)
+        self.time_out = zeros(n, wp.bool)
+        self.done = zeros(n, wp.bool)
+        self.reset_mask = zeros(n, wp.int32)
+        self.episode_length = zeros(n, wp.int32)
+        self.episode_return = zeros(n)
+        self.episode_count = zeros(n, int)
+        self.target_index = zeros(n, int)
+        self.target_world = zeros(n, wp.vec3)
+        self.final_return = zeros(n)
+        self.final_length = zeros(n, wp.int32)
+        self.final_success = zeros(n)
+        self.final_status = zeros(n, int)
+        self.final_waypoints = zeros(n, int)
+        self.final_score = wp.full(n, float("nan"), dtype=float, device=device)
+        """(N,) the competition score of each environment's last ended episode (NaN: the task has none)."""
+        self.final_position = zeros(n, wp.vec3)
+        """(N,) the boats' positions after the last decision's physics, before any reset [m]."""
+        self.final_orientation = zeros(n, wp.quat)
+        self._everyone = wp.ones(n, dtype=wp.int32, device=device)
+
+    def _bind_buffers(self, obstacles) -> EnvBuffers:
+        """torch views of the decision's arrays, the course's and the boats' state, bound once (``obstacles``: the
+        (N, K, 4) tensor of the obstacle table)."""
+        view, state = wp.to_torch, self.simulator.state
+        return EnvBuffers(
+            actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
+            final_policy_obs=view(self.final_policy_obs), final_critic_obs=view(self.final_critic_obs),
+            reward=view(self.reward), terminated=view(self.terminated), time_out=view(self.time_out),
+            done=view(self.done), episode_length=view(self.episode_length), episode_return=view(self.episode_return),
+            target=view(self.target_world), origin=view(self.origin), route=view(self.route),
+            waypoint_index=view(self.target_index), position=view(state.position),
+            orientation=view(state.orientation), velocity=view(state.velocity),
+            wind_velocity=view(state.wind_velocity), wind_direction=view(state.wind_mean_direction),
+            propeller_level=view(self.propeller_level), final_position=view(self.final_position),
+            final_orientation=view(self.final_orientation), final_return=view(self.final_return),
+            final_length=view(self.final_length), final_success=view(self.final_success),
+            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
+            final_score=view(self.final_score), obstacles=obstacles)
 
     def _start_replay(self) -> None:
         """Start with no hooks and the decision's graph to be captured at the first step."""

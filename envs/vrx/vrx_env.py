@@ -18,7 +18,6 @@ from ocean_warp.device_structs import struct_from
 from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
-from ..protocol import EnvBuffers
 from ..sailing_env import environment_origins
 from ..vessel_env import BatchedVesselEnv
 from .path_course import PathCourse
@@ -75,32 +74,9 @@ class VrxEnv(BatchedVesselEnv):
         self.origin = wp.array(origins[self.first_env:], dtype=wp.vec3, device=device)
         self.route = zeros((n, goals), wp.vec3)
         """(N, G) each environment's goal poses: x, y from its origin [m] and the heading [rad]."""
-        self.actions = zeros((n, self.num_actions))
-        self.policy_obs = zeros((n, self.num_policy_obs))
-        self.critic_obs = zeros((n, self.num_critic_obs))
-        self.final_policy_obs = zeros((n, self.num_policy_obs))
-        self.final_critic_obs = zeros((n, self.num_critic_obs))
-        self.reward = zeros(n)
-        self.terminated = zeros(n, wp.bool)
-        self.time_out = zeros(n, wp.bool)
-        self.done = zeros(n, wp.bool)
-        self.reset_mask = zeros(n, wp.int32)
-        self.episode_length = zeros(n, wp.int32)
-        self.episode_return = zeros(n)
-        self.episode_count = zeros(n, int)
-        self.target_index = zeros(n, int)
-        self.target_world = zeros(n, wp.vec3)
-        self.final_return = zeros(n)
-        self.final_length = zeros(n, wp.int32)
-        self.final_success = zeros(n)
-        self.final_status = zeros(n, int)
-        self.final_waypoints = zeros(n, int)
-        self.final_score = wp.full(n, float("nan"), dtype=float, device=device)
+        self._allocate_decision_arrays()
         self.propeller_level = zeros(n, wp.int32)
         """(N,) zeros: VRX's vessels have no propeller levels (the buffer every env has)."""
-        self.final_position = zeros(n, wp.vec3)
-        self.final_orientation = zeros(n, wp.quat)
-        self._everyone = wp.ones(n, dtype=wp.int32, device=device)
         enabled = task.enabled_actions()
         self._enabled_actions = None if all(enabled) else wp.array(enabled, dtype=wp.int32, device=device)
         """The vessel's action columns the task uses (None: all of them)."""
@@ -122,23 +98,9 @@ class VrxEnv(BatchedVesselEnv):
         self.scorer = VrxScorer(self, 0.5 * task.gate_width)
         """What keeps VRX's score of each episode and writes ``final_score`` (``ocean_warp.envs.vrx.scoring``)."""
 
-        view, state = wp.to_torch, self.simulator.state
-        self.buffers = EnvBuffers(
-            actions=view(self.actions), policy_obs=view(self.policy_obs), critic_obs=view(self.critic_obs),
-            final_policy_obs=view(self.final_policy_obs), final_critic_obs=view(self.final_critic_obs),
-            reward=view(self.reward), terminated=view(self.terminated), time_out=view(self.time_out),
-            done=view(self.done), episode_length=view(self.episode_length), episode_return=view(self.episode_return),
-            target=view(self.target_world), origin=view(self.origin), route=view(self.route),
-            waypoint_index=view(self.target_index), position=view(state.position),
-            orientation=view(state.orientation), velocity=view(state.velocity),
-            wind_velocity=view(state.wind_velocity), wind_direction=view(state.wind_mean_direction),
-            propeller_level=view(self.propeller_level), final_position=view(self.final_position),
-            final_orientation=view(self.final_orientation), final_return=view(self.final_return),
-            final_length=view(self.final_length), final_success=view(self.final_success),
-            final_status=view(self.final_status), final_waypoints=view(self.final_waypoints),
-            final_score=view(self.final_score),
-            obstacles=torch.zeros((n, 0, 4), device=self.torch_device) if self.obstacles is None
-            else view(self.obstacles.table))
+        obstacles = torch.zeros((n, 0, 4), device=self.torch_device) if self.obstacles is None else \
+            wp.to_torch(self.obstacles.table)
+        self.buffers = self._bind_buffers(obstacles)
         """torch views of the results, bound once (see :class:`~ocean_warp.envs.protocol.EnvBuffers`); ``target``
         holds the current goal's world x, y and, in column 2, its heading [rad]."""
         self._start_replay()

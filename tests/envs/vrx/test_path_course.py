@@ -105,10 +105,14 @@ def test_a_boat_driven_into_a_buoy_is_flagged_and_its_episode_ends(device, rng):
     buoy_radius = task.path_course.gate_buoy_radius
     reach = shape.radius + buoy_radius
     buoy = position[:, :2] + (shape.bow[0] + reach + 3.0) * ahead
-    # Move each environment's first gate buoy there (the scene row's anchor: the buoy then rides the sea).
+    # Move each environment's first gate buoy there (the scene row's anchor: the buoy then rides the sea), and its
+    # other buoys 500 m off (a later gate's may lie near the start), so that the planted one is the only one near.
     anchor, rows = course.scene.anchor.numpy(), course.first_row.numpy()
+    for k in range(1, 2 * task.goals):
+        anchor[rows + k, :2] = position[:, :2] + 500.0
     anchor[rows, :2] = buoy
     course.scene.anchor.assign(anchor)
+    course.scene.refresh()  # the rows contact reads follow their anchors now, not at the next decision's end
     full = torch.ones((n, env.num_actions), device=env.torch_device)
     ended = np.zeros(n, dtype=bool)
     for _ in range(40):
