@@ -28,7 +28,12 @@ import time
 from ocean_warp.cli_support import checked_device, checked_output_file, plural, report_error
 from ocean_warp.usd.stage_file import check_stage_path
 
+from ..env_factory import make_env
+from ..evaluation.evaluate import vrx_baseline
+from ..evaluation.presets import vrx_evaluation_task
+from ..registration import make_task_config
 from ..sailing_env import SailingEnv
+from ..vrx.task_config import VrxTaskConfig
 from .fleet_scenario import scenario_arguments, shipped_policy_or_none
 from .usd_export_options import ExportConfig, parser as _parser
 from ..evaluation import AutopilotController, FixedController, PolicyController, RecordedDecision, warn_other_task
@@ -55,6 +60,8 @@ def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: st
 
     from .demo_stage import MissionStageRecorder
 
+    if isinstance(make_task_config(config.task_id), VrxTaskConfig):
+        return _export_vrx(config, path, device=device, progress=progress)
     observation = None
     if config.controller == "policy":
         policy = load_policy(config.policy or shipped_policy_path(config.task_id))
@@ -81,6 +88,39 @@ def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: st
         recorder.abort()
         raise
     return recorder.close()
+
+
+def _export_vrx(config: ExportConfig, path, *, device, progress: bool) -> dict[str, str]:
+    """One of VRX's tasks to a stage: its vessel drawn part by part (``StageRecorder.for_vessel``), a frame after
+    every decision (a boat whose episode ended is shown at its next start)."""
+    from tqdm import tqdm
+
+    from ocean_warp.usd.recorder import StageRecorder, record_vessel
+
+    task = vrx_evaluation_task(make_task_config(config.task_id), sea_state=config.sea_state, wind=config.wind,
+                               seed=config.seed, time_limit=max(config.duration, 1.0))
+    if config.controller == "policy":
+        controller = PolicyController(load_policy(config.policy or shipped_policy_path(config.task_id)))
+    elif config.controller == "autopilot":
+        controller = vrx_baseline(task)
+    else:
+        raise ValueError(f"--controller fixed: {config.task_id}'s {task.num_actions} actions are the "
+                         f"{task.vessel.name}'s; steer it with the policy or the autopilot")
+    env = make_env(task, config.boats, device=device, seed=config.seed)
+    env.reset(seed=config.seed)
+    controller.reset(env)
+    recorder = StageRecorder.for_vessel(path, task.vessel, env.simulator, fps=1.0 / env.decision_period)
+    decisions = int(round(config.duration / env.decision_period))
+    try:
+        record_vessel(recorder, env.simulator, 0.0)
+        for k in tqdm(range(decisions), desc="export-usd", unit="decision", disable=not progress):
+            controller.act(env)
+            env.step()
+            record_vessel(recorder, env.simulator, (k + 1) * env.decision_period)
+    except BaseException:
+        recorder.abort()
+        raise
+    return {"stage": recorder.close()}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -79,3 +79,21 @@ def test_a_vessel_fleet_takes_joints_not_the_eboats_angles(tmp_path):
             recorder.record(0.0, where, facing, joints={"thruster_angle": np.zeros((3, 2))})
     finally:
         recorder.abort()
+
+
+def test_export_usd_records_a_vrx_task_part_by_part(tmp_path):
+    """``ocean-warp export-usd --task WamvStationKeeping-v0``: every WAM-V with its parts as prims, one frame a
+    decision (a 4 s run of 0.5 s decisions: 9 time codes), a valid stage."""
+    from ocean_warp.envs.apps.usd_export import main
+
+    path = tmp_path / "wamv.usdc"
+    assert main(["--task", "WamvStationKeeping-v0", "--boats", "2", "--duration", "4", "--out", str(path),
+                 "--device", "cpu", "--no-progress"]) == 0
+    stage = Usd.Stage.Open(str(path))
+    parts = sorted(part.name for part in Wamv().parts())
+    for boat in range(2):
+        prim = stage.GetPrimAtPath(f"/World/Fleet/Boat_{boat:04d}")
+        assert prim.IsValid() and sorted(child.GetName() for child in prim.GetChildren()) == parts
+    times = UsdGeom.Xformable(stage.GetPrimAtPath("/World/Fleet/Boat_0000")).GetTimeSamples()
+    assert len(times) == 9
+    assert not validate_stage(str(path))
