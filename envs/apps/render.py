@@ -51,7 +51,12 @@ from ocean_warp.perception.scene import Scene, SceneObject
 from ocean_warp.kernels.camera_render import follow_boat
 
 from ..decision_hook import DecisionHook
+from ..env_factory import make_env
+from ..evaluation.evaluate import vrx_baseline
+from ..evaluation.presets import vrx_evaluation_task
+from ..registration import make_task_config, task_name
 from ..sailing_env import SailingEnv
+from ..vrx.task_config import VrxTaskConfig
 from ..evaluation import AutopilotController, FleetController, PolicyController, sail_mission, warn_other_task
 from .render_options import CAMERAS, VIDEO_SUFFIXES, RenderConfig, parser as _parser  # noqa: F401 (re-exported)
 from .fleet_scenario import checked_task_name, controller_observation, shipped_policy_or_none
@@ -110,6 +115,15 @@ def fleet_controller(config: RenderConfig, boats: int):
     if not policy_boats.all():
         groups.append((AutopilotController(), ~policy_boats))
     return FleetController(groups, name="fleet")
+
+
+def vrx_controller(config: RenderConfig, task):
+    """Who sails one of VRX's tasks: the policy at ``config.policy``, the task's classical baseline
+    (``config.autopilot``), or its shipped policy (the baseline where none is shipped)."""
+    if config.policy is not None:
+        return PolicyController(load_policy(config.policy))
+    shipped = None if config.autopilot else shipped_policy_or_none(config.task_id)
+    return vrx_baseline(task) if shipped is None else PolicyController(load_policy(shipped))
 
 
 def _course_points(task, waypoints=None) -> np.ndarray:
@@ -275,14 +289,23 @@ def render_run(config: RenderConfig, out: str | os.PathLike, *, device: str = "c
     from tqdm import tqdm
 
     out = os.fspath(out)
-    controller = fleet_controller(config, config.boats) if controller is None else controller
-    task = config.task(time_limit=float(config.decisions), loop_period=None, device=device,
-                       observation=controller_observation(controller))
-    env = SailingEnv(task, config.boats, device=device, seed=config.seed)  # reset: sail_mission's reset draws the same
+    vrx = isinstance(make_task_config(config.task_id), VrxTaskConfig)
+    if vrx:  # one of VRX's tasks: its vessel, sea, wind and seed as eval sails it
+        task = vrx_evaluation_task(make_task_config(config.task_id), sea_state=config.sea_state, wind=config.wind,
+                                   seed=config.seed, time_limit=float(config.decisions))
+        controller = vrx_controller(config, task) if controller is None else controller
+    else:
+        controller = fleet_controller(config, config.boats) if controller is None else controller
+        task = config.task(time_limit=float(config.decisions), loop_period=None, device=device,
+                           observation=controller_observation(controller))
+    env = make_env(task, config.boats, device=device, seed=config.seed)  # reset: the rollout's reset draws the same
     scene, course = render_scene(env)
     view = ViewCamera(scene, config.width, config.height, math.radians(config.field_of_view), max_range=VIEW_RANGE,
                       haze_distance=HAZE_DISTANCE)
     per_decision = int(round(config.frames_per_second * env.decision_period))
+    if per_decision < 1 or abs(per_decision - config.frames_per_second * env.decision_period) > 1e-9:
+        raise ValueError(f"--fps {config.frames_per_second} does not give whole frames in {task_name(config.task_id)}'s "
+                         f"{env.decision_period:g} s decisions; choose a multiple of {1.0 / env.decision_period:g}")
     if config.camera == "fixed":
         view.look_at(*overlook(task, course))
         hook = FrameHook(env, view, per_decision)
@@ -299,7 +322,15 @@ def render_run(config: RenderConfig, out: str | os.PathLike, *, device: str = "c
             written[0] += per_decision
             bar.update(per_decision)
 
-        sail_mission(env, controller, frames_per_decision=per_decision, on_decision=write_frames)
+        if vrx:  # a VRX env has no recorded decision (boom, rudder): step it and take the hook's frames
+            env.reset(seed=env.seed)
+            controller.reset(env)
+            for k in range(int(round(config.decisions / env.decision_period))):
+                controller.act(env)
+                env.step()
+                write_frames(k, None)
+        else:
+            sail_mission(env, controller, frames_per_decision=per_decision, on_decision=write_frames)
     return RenderResult(path=out, frames=written[0], wall_s=time.perf_counter() - started)
 
 
@@ -348,7 +379,9 @@ def main(argv: list[str] | None = None) -> int:
     if problem is not None:
         return report_error(parser.prog, problem)
     try:
-        controller = fleet_controller(config, config.boats)
+        task = make_task_config(config.task_id)
+        controller = vrx_controller(config, task) if isinstance(task, VrxTaskConfig) else \
+            fleet_controller(config, config.boats)
     except (ValueError, FileNotFoundError) as error:  # an unusable policy checkpoint, or none shipped
         return report_error(parser.prog, str(error))
     if isinstance(controller, PolicyController):  # --policy

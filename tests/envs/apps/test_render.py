@@ -283,3 +283,15 @@ def test_a_frame_of_two_wamvs_shows_them_where_they_are():
             window = (slice(row - 1, row + 2), slice(column - 1, column + 2))  # a pontoon is about a pixel wide
             assert np.min(np.abs(boats_depth[window] - np.linalg.norm(top - eye))) < 0.5
         assert np.array_equal(boats[0, :], water[0, :])  # the top row: sky and far sea, no boat
+
+
+def test_render_sails_a_vrx_task_and_refuses_fractional_frames(tmp_path, capsys):
+    """``ocean-warp render --task WamvWayfinding-v0``: 1 s at 10 frames a second (5 in each 0.5 s decision) of
+    the WAM-Vs under their shipped policy; 1 frame a second cannot split a 0.5 s decision: one line, status 2."""
+    out = tmp_path / "wamv.gif"
+    assert render.main(["--task", "WamvWayfinding-v0", "--boats", "2", "--duration", "1", "--width", "32",
+                        "--height", "24", "--out", str(out), "--device", "cpu", "--no-progress"]) == 0
+    assert Image.open(out).n_frames == 10
+    assert render.main(["--task", "WamvWayfinding-v0", "--duration", "1", "--fps", "1", "--width", "32", "--height",
+                        "24", "--out", str(tmp_path / "one.gif"), "--device", "cpu", "--no-progress"]) == 2
+    assert "0.5 s decisions" in capsys.readouterr().err
