@@ -20,7 +20,7 @@ from ..vrx.task_config import VrxTask, VrxTaskConfig
 from ..tasks.task_configs import TaskConfig
 from ..training.policy_io import Policy, load_policy
 from ..controllers.los_guidance import LosGuidanceController
-from ..controllers.station_keeping import StationKeepingController
+from ..controllers.station_keeping import WAMV_STATION_KEEPING, StationKeepingController
 from .controllers import AutopilotController, PolicyController
 from .presets import evaluation_task
 from .results_io import MissionEvaluation
@@ -116,7 +116,7 @@ def vrx_baseline(task: VrxTaskConfig):
     the path."""
     if task.kind is VrxTask.FOLLOW_PATH:
         return LosGuidanceController()
-    return StationKeepingController()
+    return StationKeepingController(WAMV_STATION_KEEPING)
 
 
 def _logging_callbacks(log, env: SailingEnv, name: str) -> dict:
