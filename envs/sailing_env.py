@@ -85,8 +85,9 @@ class SailingEnv(BatchedVesselEnv):
         self.num_envs = require_int_in_range("SailingEnv", "num_envs", num_envs, 1, 2**24)
         self.seed = require_int_in_range("SailingEnv", "seed", seed, 0, 2**31 - 1)
         self.first_env = require_int_in_range("SailingEnv", "first_env", first_env, 0, 2**24)
-        self.simulator = EBoatSimulator(task.simulator, self.num_envs, device=device, first_boat=self.first_env)
-        self.vessel = EBoatVessel(task.simulator)  # what the scene, the stage and the topics draw and read
+        self.vessel = EBoatVessel(task.simulator)
+        """The E-Boat of the task (what builds the boats, and what the scene, the stage and the topics draw)."""
+        self.simulator = self.vessel.simulator(self.num_envs, device=device, first_boat=self.first_env)
         self.device = self.simulator.device
         self.torch_device = torch.device(wp.device_to_torch(self.device))
         # The policy sees its observation set's values, its reef level (a task with a reef rule), its lidar's sectors.
