@@ -21,10 +21,11 @@ from ocean_warp.validation import require_int_in_range
 from ..sailing_env import environment_origins
 from ..vessel_env import BatchedVesselEnv
 from .path_course import PathCourse
+from .reward_terms import vrx_reward_terms
 from .scoring import VrxScorer
 from .task_config import VrxTask, VrxTaskConfig
 from .vrx_kernels import (POLICY_BASE, PRIVILEGED, VesselStartRows, VrxCourse, VrxParameters, VrxStartDistribution,
-                          vrx_draw_starts, vrx_evaluate, vrx_observe)
+                          vrx_draw_starts, vrx_evaluate_kernel, vrx_observe)
 
 __all__ = ["VrxEnv"]
 
@@ -119,7 +120,7 @@ class VrxEnv(BatchedVesselEnv):
         ended, and the observations of the next decision (launch only)."""
         state = self.simulator.state
         self._sense_components()
-        wp.launch(vrx_evaluate, dim=self.num_envs, device=self.device,
+        wp.launch(vrx_evaluate_kernel(vrx_reward_terms(self.task)), dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, 0.5 * self.task.gate_width, self.actions, state.status, state.position,
                           state.orientation, self._course],
                   outputs=[self.reward, self.terminated, self.time_out, self.done, self.reset_mask, self.final_return,

@@ -9,15 +9,19 @@ pose too: its centre and the direction it is passed in.
 
 from __future__ import annotations
 
+import functools
+
 import warp as wp
 
 from ocean_warp.kernels.random_streams import stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
+from .reward_terms import VRX_REWARD_TERMS, effort_cost, error_cost, flagged_penalty, pose_progress, reach_bonus
+
 __all__ = ["VrxParameters", "VrxStartDistribution", "VrxCourse", "VesselStartRows", "STATION_KEEPING",
-           "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "vrx_evaluate", "vrx_observe",
-           "vrx_draw_starts", "vrx_path_inputs", "as_bool"]
+           "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "vrx_evaluate_kernel",
+           "vrx_observe", "vrx_draw_starts", "vrx_path_inputs", "as_bool"]
 
 STATION_KEEPING = wp.constant(0)
 WAYFINDING = wp.constant(1)
@@ -158,97 +162,119 @@ def crossed_gate(gate: wp.vec3, half_width: float, before: wp.vec3, after: wp.ve
     return wp.abs(-s * x + c * y) <= half_width
 
 
-@wp.kernel(enable_backward=False)
-def vrx_evaluate(
-    p: VrxParameters,
-    gate_half_width: float,
-    actions: wp.array2d(dtype=float),
-    status: wp.array(dtype=int),
-    position: wp.array(dtype=wp.vec3),
-    orientation: wp.array(dtype=wp.quat),
-    course: VrxCourse,
-    reward: wp.array(dtype=float),
-    terminated: wp.array(dtype=wp.bool),
-    time_out: wp.array(dtype=wp.bool),
-    done: wp.array(dtype=wp.bool),
-    reset_mask: wp.array(dtype=wp.int32),
-    final_return: wp.array(dtype=float),
-    final_length: wp.array(dtype=wp.int32),
-    final_success: wp.array(dtype=float),
-    final_status: wp.array(dtype=int),
-    final_waypoints: wp.array(dtype=int),
-):
-    """Reward, goal progress and the end of the episode after a decision (see ``VrxRewardConfig``)."""
-    env = wp.tid()
-    flags = status[env]
-    index = course.target_index[env]
-    local = position[env] - course.origin[env]
-    yaw = heading_of(orientation[env])
-    goal = course.route[env, index]
-    offset = goal_offset(goal, local, yaw)
-    distance = wp.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
-    error = pose_error(distance, offset[2])
-    r = p.progress_scale * (course.previous_error[env] - error) - p.error_cost * error * p.decision_period
-    effort = float(0.0)
-    for k in range(p.num_actions):
-        a = clip_unit(actions[env, k], 1.0)
-        course.last_action[env, k] = a
-        effort += a * a
-    r -= p.action_cost * effort / float(p.num_actions)
+@functools.lru_cache(maxsize=None)
+def vrx_evaluate_kernel(terms: tuple[str, ...]) -> wp.Kernel:
+    """The kernel of a decision's reward, goal progress and episode end with the progress and the optional reward
+    ``terms`` (names of ``reward_terms.VRX_REWARD_TERMS``), built once per selection; its key names them.
 
-    reached = False
-    if p.kind == WAYFINDING:
-        reached = error < p.reach_error
-    elif p.kind == FOLLOW_PATH:
-        reached = crossed_gate(goal, gate_half_width, course.previous_position[env] - course.origin[env], local)
-    if reached:
-        r += p.reach_bonus
-        index += 1
-    finished = index >= p.goal_count
-    if not finished:
+    Launched over the environments with (p: VrxParameters, gate_half_width [m], actions (N, A), status (N,),
+    position (N,) vec3 [m], orientation (N,) quat, course: VrxCourse) and the episode-end outputs."""
+    unknown = sorted(set(terms) - set(VRX_REWARD_TERMS))
+    if unknown:
+        raise ValueError(f"vrx_evaluate_kernel: unknown reward terms {unknown}; the terms: "
+                         f"{', '.join(VRX_REWARD_TERMS)}")
+    with_error, with_effort = "error" in terms, "effort" in terms
+    with_reach, with_flagged = "reach" in terms, "flagged" in terms
+    name = "_".join(("vrx_evaluate_progress",) + tuple(term for term in VRX_REWARD_TERMS if term in terms))
+
+    @wp.kernel(enable_backward=False, module="unique", name=name)
+    def vrx_evaluate(
+        p: VrxParameters,
+        gate_half_width: float,
+        actions: wp.array2d(dtype=float),
+        status: wp.array(dtype=int),
+        position: wp.array(dtype=wp.vec3),
+        orientation: wp.array(dtype=wp.quat),
+        course: VrxCourse,
+        reward: wp.array(dtype=float),
+        terminated: wp.array(dtype=wp.bool),
+        time_out: wp.array(dtype=wp.bool),
+        done: wp.array(dtype=wp.bool),
+        reset_mask: wp.array(dtype=wp.int32),
+        final_return: wp.array(dtype=float),
+        final_length: wp.array(dtype=wp.int32),
+        final_success: wp.array(dtype=float),
+        final_status: wp.array(dtype=int),
+        final_waypoints: wp.array(dtype=int),
+    ):
+        """Reward, goal progress and the end of the episode after a decision (see ``VrxRewardConfig``)."""
+        env = wp.tid()
+        flags = status[env]
+        index = course.target_index[env]
+        local = position[env] - course.origin[env]
+        yaw = heading_of(orientation[env])
         goal = course.route[env, index]
         offset = goal_offset(goal, local, yaw)
         distance = wp.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
         error = pose_error(distance, offset[2])
-    flagged = flags != 0
-    lost = distance > p.lost_distance or not wp.isfinite(error)
-    if flagged:
-        r -= p.flagged_penalty
-    if not wp.isfinite(r):
-        r = -p.flagged_penalty
-    length = int(course.episode_length[env]) + 1
-    ended = flagged or lost or finished
-    timed = (not ended) and length >= p.max_episode_length
-    reward[env] = r
-    terminated[env] = ended
-    time_out[env] = timed
-    done[env] = ended or timed
-    total = course.episode_return[env] + r
-    course.target_index[env] = wp.min(index, p.goal_count - 1)
-    course.previous_error[env] = error
-    course.previous_position[env] = position[env]
-    if ended or timed:
-        reset_mask[env] = 1
-        final_return[env] = total
-        final_length[env] = wp.int32(length)
-        success = float(0.0)
-        if p.kind == STATION_KEEPING:
-            if (not flagged) and error < 1.0:
+        r = pose_progress(course.previous_error[env], error, p.progress_scale)
+        if wp.static(with_error):
+            r = r + error_cost(error, p.error_cost, p.decision_period)
+        effort = float(0.0)
+        for k in range(p.num_actions):
+            a = clip_unit(actions[env, k], 1.0)
+            course.last_action[env, k] = a
+            effort += a * a
+        if wp.static(with_effort):
+            r = r + effort_cost(effort, p.num_actions, p.action_cost)
+
+        reached = False
+        if p.kind == WAYFINDING:
+            reached = error < p.reach_error
+        elif p.kind == FOLLOW_PATH:
+            reached = crossed_gate(goal, gate_half_width, course.previous_position[env] - course.origin[env], local)
+        if reached:
+            if wp.static(with_reach):
+                r = r + reach_bonus(p.reach_bonus)
+            index += 1
+        finished = index >= p.goal_count
+        if not finished:
+            goal = course.route[env, index]
+            offset = goal_offset(goal, local, yaw)
+            distance = wp.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
+            error = pose_error(distance, offset[2])
+        flagged = flags != 0
+        lost = distance > p.lost_distance or not wp.isfinite(error)
+        if flagged:
+            if wp.static(with_flagged):
+                r = r + flagged_penalty(p.flagged_penalty)
+        if not wp.isfinite(r):
+            r = -p.flagged_penalty
+        length = int(course.episode_length[env]) + 1
+        ended = flagged or lost or finished
+        timed = (not ended) and length >= p.max_episode_length
+        reward[env] = r
+        terminated[env] = ended
+        time_out[env] = timed
+        done[env] = ended or timed
+        total = course.episode_return[env] + r
+        course.target_index[env] = wp.min(index, p.goal_count - 1)
+        course.previous_error[env] = error
+        course.previous_position[env] = position[env]
+        if ended or timed:
+            reset_mask[env] = 1
+            final_return[env] = total
+            final_length[env] = wp.int32(length)
+            success = float(0.0)
+            if p.kind == STATION_KEEPING:
+                if (not flagged) and error < 1.0:
+                    success = 1.0
+            elif finished:
                 success = 1.0
-        elif finished:
-            success = 1.0
-        final_success[env] = success
-        final_status[env] = flags
-        final_waypoints[env] = index
-        course.episode_return[env] = 0.0
-        course.episode_length[env] = wp.int32(0)
-    else:
-        reset_mask[env] = 0
-        course.episode_return[env] = total
-        course.episode_length[env] = wp.int32(length)
-    current = course.route[env, course.target_index[env]]
-    origin = course.origin[env]
-    course.target_world[env] = wp.vec3(origin[0] + current[0], origin[1] + current[1], current[2])
+            final_success[env] = success
+            final_status[env] = flags
+            final_waypoints[env] = index
+            course.episode_return[env] = 0.0
+            course.episode_length[env] = wp.int32(0)
+        else:
+            reset_mask[env] = 0
+            course.episode_return[env] = total
+            course.episode_length[env] = wp.int32(length)
+        current = course.route[env, course.target_index[env]]
+        origin = course.origin[env]
+        course.target_world[env] = wp.vec3(origin[0] + current[0], origin[1] + current[1], current[2])
+
+    return vrx_evaluate
 
 
 @wp.kernel(enable_backward=False)

@@ -219,3 +219,26 @@ def test_eval_of_a_vrx_task_writes_vrx_scores(task_id, baseline, tmp_path):
         scores = [float(run["vrx_score"]) for run in runs if run["controller"] == name]
         assert len(scores) == 2 and all(math.isfinite(v) and v >= 0.0 for v in scores)
         assert float(row["vrx_score"]) == pytest.approx(np.mean(scores), rel=1e-4)
+
+
+def test_a_reward_without_costs_is_the_progress_alone_and_kernels_are_shared(vessel, device, rng):
+    """With zero error and action costs the reward kernel holds the progress alone (its key says so): the reward is
+    1.5 x the pose error removed, worked out from the poses before and after; two envs of one selection share it."""
+    from ocean_warp.envs.vrx.reward_terms import vrx_reward_terms
+    from ocean_warp.envs.vrx.vrx_kernels import vrx_evaluate_kernel
+
+    reward = VrxRewardConfig(progress_scale=1.5, error_cost=0.0, action_cost=0.0, reach_bonus=0.0)
+    task = VrxTaskConfig(kind="station_keeping", vessel=vessel, reward=reward)
+    assert vrx_reward_terms(task) == ("flagged",)
+    assert vrx_evaluate_kernel(vrx_reward_terms(task)).key == "vrx_evaluate_progress_flagged"
+    env = VrxEnv(task, 3, device=device, seed=int(rng.integers(1 << 30)))
+    b = env.buffers
+    goal = b.route.cpu().numpy()[:, 0]
+    before = pose_error(b.position.cpu().numpy() - b.origin.cpu().numpy(), yaw_of(b.orientation.cpu().numpy()), goal)
+    env.step(torch.as_tensor(rng.uniform(-1, 1, (3, 3)), dtype=torch.float32, device=env.torch_device))
+    after = pose_error(b.final_position.cpu().numpy() - b.origin.cpu().numpy(),
+                       yaw_of(b.final_orientation.cpu().numpy()), goal)
+    np.testing.assert_allclose(b.reward.cpu().numpy(), 1.5 * (before - after), rtol=1e-4, atol=1e-4)
+    assert vrx_evaluate_kernel(("flagged",)) is vrx_evaluate_kernel(vrx_reward_terms(task))
+    with pytest.raises(ValueError, match="unknown reward terms"):
+        vrx_evaluate_kernel(("bonus",))
