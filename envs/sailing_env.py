@@ -20,7 +20,6 @@ import warp as wp
 from ocean_warp.device_structs import struct_from
 from ocean_warp.eboat import EBoatSimulator, EBoatVessel, Hydrostatics
 from ocean_warp.perception.scene import Scene
-from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
 from .tasks.task_kernels import (
@@ -177,28 +176,8 @@ class SailingEnv(BatchedVesselEnv):
         self.simulator.reset_masked(mask)
 
     # --- host calls --------------------------------------------------------------------------------
-    def reset(self, seed: int | None = None) -> None:
-        """Start a new episode in every environment; with ``seed``, restart the whole batch from it: every
-        environment's random stream, the simulated time (the waves) and the gusts' and sensors' noise
-        (one seed, one sequence of episodes)."""
-        with ordered_with_torch(self.device):
-            if seed is not None:
-                self.seed = require_int_in_range("SailingEnv.reset", "seed", seed, 0, 2**31 - 1)
-                self._seed.fill_(self.seed)
-                self.episode_count.zero_()
-                self.simulator.rewind()
-                self._restart_component_streams()
-            self.terminated.zero_()
-            self.time_out.zero_()
-            self.done.zero_()
-            self._start_episodes(self._everyone)
-            self._sense_components()
-            self._observe(self.policy_obs, self.critic_obs)
-            wp.copy(self.final_policy_obs, self.policy_obs)
-            wp.copy(self.final_critic_obs, self.critic_obs)
-            wp.copy(self.final_position, self.simulator.state.position)
-            wp.copy(self.final_orientation, self.simulator.state.orientation)
-            wp.copy(self.propeller_level, self.simulator.control.propeller)
+    def _after_reset(self) -> None:
+        wp.copy(self.propeller_level, self.simulator.control.propeller)
 
     def set_start(self, start) -> None:
         """Draw the episodes that start from now on from ``start`` (a ``StartConfig``: a training curriculum's

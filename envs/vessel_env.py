@@ -16,6 +16,7 @@ import warp as wp
 
 from ocean_warp.replay import ReplayedLaunches
 from ocean_warp.torch_streams import ordered_with_torch
+from ocean_warp.validation import require_int_in_range
 
 from .components import EnvComponent
 from .decision_hook import DecisionHook, HookChain
@@ -178,6 +179,32 @@ class BatchedVesselEnv:
     def launch_task(self) -> None:
         """The environment layer after the physics (launch only)."""
         raise NotImplementedError
+
+    def reset(self, seed: int | None = None) -> None:
+        """Start a new episode in every environment; with ``seed``, restart the whole batch from it: every
+        environment's random stream, the simulated time (the waves) and the gusts' and sensors' noise
+        (one seed, one sequence of episodes)."""
+        with ordered_with_torch(self.device):
+            if seed is not None:
+                self.seed = require_int_in_range(f"{type(self).__name__}.reset", "seed", seed, 0, 2**31 - 1)
+                self._seed.fill_(self.seed)
+                self.episode_count.zero_()
+                self.simulator.rewind()
+                self._restart_component_streams()
+            self.terminated.zero_()
+            self.time_out.zero_()
+            self.done.zero_()
+            self._start_episodes(self._everyone)
+            self._sense_components()
+            self._observe(self.policy_obs, self.critic_obs)
+            wp.copy(self.final_policy_obs, self.policy_obs)
+            wp.copy(self.final_critic_obs, self.critic_obs)
+            wp.copy(self.final_position, self.simulator.state.position)
+            wp.copy(self.final_orientation, self.simulator.state.orientation)
+            self._after_reset()
+
+    def _after_reset(self) -> None:
+        """What a subclass adds at the end of :meth:`reset` (launches only); nothing by default."""
 
     def episode_log(self) -> dict[str, torch.Tensor]:
         """Statistics of the episodes that ended in the last step, see :func:`~ocean_warp.envs.protocol.episode_log`."""

@@ -75,9 +75,9 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     if policy is not None:
         controllers.append(PolicyController(policy))
     task = DEFAULT_TASK if task is None else task
-    vrx = isinstance(make_task_config(task) if isinstance(task, str) else task, VrxTaskConfig)
-    if autopilot is not False and autopilot is not None and vrx:
-        controllers.append(vrx_baseline(make_task_config(task) if isinstance(task, str) else task))
+    resolved = make_task_config(task) if isinstance(task, str) else task
+    if autopilot is not False and autopilot is not None and isinstance(resolved, VrxTaskConfig):
+        controllers.append(vrx_baseline(resolved))
     elif autopilot is not False and autopilot is not None:
         if isinstance(autopilot, str):
             controllers.append(AutopilotController(autopilot=autopilot))

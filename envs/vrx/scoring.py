@@ -8,19 +8,20 @@ import warp as wp
 
 from ..tasks.vrx_scoring import FollowPathScore, StationKeepingScore, WayfindingScore
 from .task_config import VrxTask
-from .vrx_kernels import as_bool, vrx_path_inputs
+from .vrx_kernels import vrx_path_inputs
 
 __all__ = ["VrxScorer"]
 
 
 class VrxScorer:
-    """The score of ``env``'s task: ``launch_update`` after each decision's rewards (before the same-step reset),
-    ``launch_reset`` where new episodes start without a score (a seeded restart). Launches only (graph-safe)."""
+    """The score of ``env``'s task: ``launch_update`` after each decision's rewards (before the same-step reset; it
+    writes the ended episodes' scores and starts their next), ``launch_reset`` when every episode restarts without a
+    score (``env.reset``). Launches only (graph-safe)."""
 
     def __init__(self, env, gate_half_width: float):
         n, device, task = env.num_envs, env.device, env.task
         self.kind = task.kind
-        self._ended = wp.zeros(n, dtype=wp.bool, device=device)
+        self._everyone = wp.ones(n, dtype=wp.bool, device=device)
         if self.kind is VrxTask.STATION_KEEPING:
             self.rule = StationKeepingScore(n, device)
         elif self.kind is VrxTask.WAYFINDING:
@@ -44,6 +45,5 @@ class VrxScorer:
             self.rule.update(state.position, env.origin, self.gates, self.contact, env.decision_period)
         self.rule.finish(env.done, env.final_score)
 
-    def launch_reset(self, env, mask: wp.array) -> None:
-        wp.launch(as_bool, dim=env.num_envs, device=env.device, inputs=[mask], outputs=[self._ended])
-        self.rule.reset_masked(self._ended)
+    def launch_reset(self, env) -> None:
+        self.rule.reset_masked(self._everyone)

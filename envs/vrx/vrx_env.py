@@ -15,7 +15,6 @@ import torch
 import warp as wp
 
 from ocean_warp.device_structs import struct_from
-from ocean_warp.torch_streams import ordered_with_torch
 from ocean_warp.validation import require_int_in_range
 
 from ..sailing_env import environment_origins
@@ -144,28 +143,10 @@ class VrxEnv(BatchedVesselEnv):
                           self._start_rows])
         self._draw_components(mask, self._course)
         self.simulator.reset_masked(mask)
-        self.scorer.launch_reset(self, mask)
 
     # --- host calls --------------------------------------------------------------------------------
-    def reset(self, seed: int | None = None) -> None:
-        """Start a new episode in every environment; with ``seed``, restart the whole batch from it."""
-        with ordered_with_torch(self.device):
-            if seed is not None:
-                self.seed = require_int_in_range("VrxEnv.reset", "seed", seed, 0, 2**31 - 1)
-                self._seed.fill_(self.seed)
-                self.episode_count.zero_()
-                self.simulator.rewind()
-                self._restart_component_streams()
-            self.terminated.zero_()
-            self.time_out.zero_()
-            self.done.zero_()
-            self._start_episodes(self._everyone)
-            self._sense_components()
-            self._observe(self.policy_obs, self.critic_obs)
-            wp.copy(self.final_policy_obs, self.policy_obs)
-            wp.copy(self.final_critic_obs, self.critic_obs)
-            wp.copy(self.final_position, self.simulator.state.position)
-            wp.copy(self.final_orientation, self.simulator.state.orientation)
+    def _after_reset(self) -> None:
+        self.scorer.launch_reset(self)
 
     def _start_height(self) -> float:
         rest = getattr(self.simulator, "rest_height", None)

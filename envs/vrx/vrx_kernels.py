@@ -21,7 +21,7 @@ from .reward_terms import VRX_REWARD_TERMS, effort_cost, error_cost, flagged_pen
 
 __all__ = ["VrxParameters", "VrxStartDistribution", "VrxCourse", "VesselStartRows", "STATION_KEEPING",
            "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "vrx_evaluate_kernel",
-           "vrx_observe", "vrx_draw_starts", "vrx_path_inputs", "as_bool"]
+           "vrx_observe", "vrx_draw_starts", "vrx_path_inputs"]
 
 STATION_KEEPING = wp.constant(0)
 WAYFINDING = wp.constant(1)
@@ -419,10 +419,3 @@ def vrx_path_inputs(
     gates[env, g] = wp.vec4(gate[0] - across[0], gate[1] - across[1], gate[0] + across[0], gate[1] + across[1])
     if g == 0:
         contact[env] = (status[env] & STATUS_COLLIDED) != 0
-
-
-@wp.kernel(enable_backward=False)
-def as_bool(mask: wp.array(dtype=wp.int32), out: wp.array(dtype=wp.bool)):
-    """``out = mask != 0``."""
-    i = wp.tid()
-    out[i] = mask[i] != 0

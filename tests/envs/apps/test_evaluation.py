@@ -615,7 +615,7 @@ SHIPPED = set(policies.SHIPPED_POLICIES)
 
 
 EBOAT_TASK_IDS = [name for name in TASK_IDS if name.startswith("EBoat")]
-"""The E-Boat's sailing tasks: ``eval`` does not sail VRX's tasks yet (``benchmarks/studies/wamv_tasks.py`` does)."""
+"""The E-Boat's sailing tasks (VRX's, with their own baselines and scores: ``tests/envs/vrx/test_vrx_env.py``)."""
 
 
 @pytest.mark.parametrize("task_id", [f"ocean_warp/{name}" if k % 2 else name for k, name in enumerate(EBOAT_TASK_IDS)])
