@@ -155,7 +155,7 @@ def observation_layout(task: str, observation: str, num_obs: int) -> list[str]:
     if getattr(config, "vessel", None) is not None:  # one of VRX's tasks: its block and the vessel's actions
         from ..vrx.observation_blocks import vrx_policy_layout
 
-        layout = [column.text() for column in vrx_policy_layout(config.vessel)]
+        layout = [column.text() for column in vrx_policy_layout(config)]
         if len(layout) == num_obs:
             return layout
     block = SET_BLOCKS.get(observation)

@@ -28,7 +28,7 @@ from .task_configs import ObservationSet
 from .task_structs import BoatView, Course
 
 __all__ = ["ObservationColumn", "ObservationBlock", "SEED_BLOCK", "PLUS_BLOCK", "SET_BLOCKS", "PRIVILEGED_BLOCK",
-           "reef_block", "lidar_block", "policy_blocks", "policy_layout", "seed_columns", "plus_columns",
+           "reef_block", "lidar_block", "lidar_sectors_block", "policy_blocks", "policy_layout", "seed_columns", "plus_columns",
            "SET_COLUMNS", "reef_column", "privileged_columns", "finite_or_zero", "unit_clip"]
 
 
@@ -182,10 +182,14 @@ def reef_column(policy: wp.array2d(dtype=float), env: int, first: int, boats: Bo
 def lidar_block(task) -> ObservationBlock:
     """The lidar's sectors of ``task`` (a ``TaskConfig``), after the reef level, where the task has a lidar:
     the nearest return of each sector over the lidar's range; empty otherwise."""
-    lidar = task.lidar
+    return lidar_sectors_block(task.lidar, task.lidar_sectors)
+
+
+def lidar_sectors_block(lidar, sectors: int) -> ObservationBlock:
+    """The ``sectors`` values ``obstacle_kernels.append_sectors`` writes for ``lidar`` (a ``LidarConfig``; None:
+    an empty block): the nearest return of each sector over the lidar's range."""
     if lidar is None:
         return ObservationBlock("lidar", ())
-    sectors = task.lidar_sectors
     azimuths = np.degrees(lidar.azimuths())
     width = lidar.beams // sectors
     return ObservationBlock("lidar", tuple(

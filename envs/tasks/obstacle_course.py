@@ -55,8 +55,8 @@ class ObstacleCourse(EnvComponent):
         clearance: (N,) float array this course writes each boat's gap to the nearest obstacle into [m].
         proximity_range: the gap written where no obstacle is nearer [m].
         lidar: the lidar the policy sees through (None: none) and ``lidar_sectors`` of its beams' minima.
-        policy_column: the policy observation's column the lidar's sectors start at (the critic's: after the
-            privileged values).
+        policy_column: the policy observation's column the lidar's sectors start at.
+        critic_column: the critic observation's (None: ``policy_column`` + the sailing tasks' privileged values).
         first_env: the batch's first environment in a larger one (the lidar's noise streams).
 
     Attributes:
@@ -68,7 +68,8 @@ class ObstacleCourse(EnvComponent):
 
     def __init__(self, scene: Scene, *, layout: ObstacleLayoutConfig | None, contact: ContactConfig | None,
                  shape: CollisionShape, clearance: wp.array, proximity_range: float, lidar: LidarConfig | None = None,
-                 lidar_sectors: int = 0, policy_column: int = 0, first_env: int = 0):
+                 lidar_sectors: int = 0, policy_column: int = 0, critic_column: int | None = None,
+                 first_env: int = 0):
         device, n = scene.device, scene.envs
         self.scene, self.device, self.num_envs = scene, device, n
         self.slots = scene.free_slots
@@ -92,7 +93,8 @@ class ObstacleCourse(EnvComponent):
         """The boats' capsule, for the gap to the obstacles (with or without contact forces)."""
         self.lidar = None if lidar is None else Lidar(lidar, scene, first_index=first_env)
         self._sectors = None if self.lidar is None else self.lidar.downsampled_array(lidar_sectors)
-        self._policy_column, self._critic_column = policy_column, policy_column + PRIVILEGED_OBS
+        self._policy_column = policy_column
+        self._critic_column = policy_column + PRIVILEGED_OBS if critic_column is None else critic_column
 
     # --- inside the decision ------------------------------------------------------------------------
     def draw(self, seed: wp.array, first_env: int, mask: wp.array, course) -> None:
@@ -114,7 +116,7 @@ class ObstacleCourse(EnvComponent):
                   outputs=[self.clearance])
 
     def append_observation(self, policy: wp.array, critic: wp.array) -> None:
-        """The lidar's sectors after the observation set's values (policy) and the privileged ones (critic)."""
+        """The lidar's sectors at their columns: after the task's values (policy) and the privileged ones (critic)."""
         if self._sectors is None:
             return
         wp.launch(append_sectors, dim=self._sectors.shape, device=self.device,

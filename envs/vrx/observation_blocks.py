@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from ..tasks.observation_blocks import ObservationBlock, ObservationColumn
+from ..tasks.observation_blocks import ObservationBlock, ObservationColumn, lidar_sectors_block
 from .vrx_kernels import POLICY_BASE
 
 __all__ = ["VRX_BLOCK", "VRX_PRIVILEGED_BLOCK", "vrx_policy_blocks", "vrx_policy_layout"]
@@ -32,13 +32,15 @@ VRX_PRIVILEGED_BLOCK = ObservationBlock("vrx_privileged", (
 assert len(VRX_BLOCK) == POLICY_BASE, "the block must name every value vrx_observe writes before the actions"
 
 
-def vrx_policy_blocks(vessel) -> tuple[ObservationBlock, ...]:
-    """The blocks of a VRX task's policy observation on ``vessel``: the task's values, then the last actions."""
+def vrx_policy_blocks(task) -> tuple[ObservationBlock, ...]:
+    """The blocks of the policy observation of ``task`` (a ``VrxTaskConfig``): the task's values, the last actions
+    of its vessel, then the path's lidar sectors where the task has them (``append_sectors``)."""
     actions = ObservationBlock("last_actions", tuple(ObservationColumn(f"last_{spec.name}", f"-1 .. 1: {spec.meaning}")
-                                                     for spec in vessel.actions))
-    return (VRX_BLOCK, actions)
+                                                     for spec in task.vessel.actions))
+    lidar = task.path_lidar
+    return (VRX_BLOCK, actions, lidar_sectors_block(lidar, 0 if lidar is None else task.lidar_observations))
 
 
-def vrx_policy_layout(vessel) -> tuple[ObservationColumn, ...]:
-    """Every column of a VRX task's policy observation on ``vessel``, in the order the kernel writes them."""
-    return tuple(column for block in vrx_policy_blocks(vessel) for column in block.columns)
+def vrx_policy_layout(task) -> tuple[ObservationColumn, ...]:
+    """Every column of ``task``'s policy observation, in the order the kernels write them."""
+    return tuple(column for block in vrx_policy_blocks(task) for column in block.columns)

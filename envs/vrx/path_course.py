@@ -34,17 +34,21 @@ class PathCourse(ObstacleCourse):
         vessel: the ``ocean_warp.vessel.Vessel`` sailing it (its parts for rays, its capsule for contact).
         clearance: (N,) float array each boat's gap to the nearest buoy is written into [m].
         search: the gap written where no buoy is nearer [m].
+        policy_column, critic_column: where the lidar's sectors (``config.lidar``) go in the observations.
+        first_env: the batch's first environment in a larger one (the lidar's noise streams).
     """
 
     def __init__(self, simulator, origins: wp.array, config: PathCourseConfig, *, gates: int, gate_half_width: float,
-                 vessel, clearance: wp.array, search: float = 10.0):
+                 vessel, clearance: wp.array, search: float = 10.0, policy_column: int = 0, critic_column: int = 0,
+                 first_env: int = 0):
         n = simulator.count
         # The scene draws the vessel's own parts for rays; contact and the gaps read the poses and its capsule.
         scene = Scene.for_vessel(vessel, simulator, envs=n, boat_env=np.arange(n), origins=origins.numpy(),
                                  water_visible=True, free_slots=2 * gates + config.obstacles)
         shape = vessel.collision_shape()
         super().__init__(scene, layout=None, contact=config.contact, shape=shape, clearance=clearance,
-                         proximity_range=search)
+                         proximity_range=search, lidar=config.lidar, lidar_sectors=config.lidar_observations,
+                         policy_column=policy_column, critic_column=critic_column, first_env=first_env)
         self.config = config
         self.path = PathLayout()
         p = self.path

@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 
 from ocean_warp.contact import ContactConfig
+from ocean_warp.perception.lidar_config import LidarConfig
 from ocean_warp.validation import require_int_in_range, require_non_negative, require_positive
 
 __all__ = ["PathCourseConfig"]
@@ -34,6 +35,12 @@ class PathCourseConfig:
     """Draws per obstacle before its row is left empty."""
     contact: ContactConfig | None = dataclasses.field(default_factory=ContactConfig)
     """The contact's law (None: the buoys are there but nothing touches them)."""
+    lidar: LidarConfig | None = None
+    """A lidar on every boat, scanned when the observation is made; the policy sees ``lidar_sectors`` values after
+    the task's and the last actions: the nearest return of each sector over the lidar's max range, in [0, 1] (None:
+    no lidar, the buoys are not seen)."""
+    lidar_sectors: int = 24
+    """Equal sectors the lidar's beams are pooled into (a whole divisor of its beams per channel)."""
 
     def __post_init__(self):
         owner = "PathCourseConfig"
@@ -45,3 +52,15 @@ class PathCourseConfig:
         object.__setattr__(self, "attempts", require_int_in_range(owner, "attempts", self.attempts, 1, 64))
         if self.contact is not None and not isinstance(self.contact, ContactConfig):
             raise ValueError(f"{owner}.contact must be a ContactConfig or None, got {self.contact!r}")
+        if self.lidar is not None:
+            if not isinstance(self.lidar, LidarConfig):
+                raise ValueError(f"{owner}.lidar must be a LidarConfig or None, got {self.lidar!r}")
+            sectors, beams = self.lidar_sectors, self.lidar.beams
+            if isinstance(sectors, bool) or not isinstance(sectors, int) or not 1 <= sectors <= beams or beams % sectors:
+                raise ValueError(f"{owner}.lidar_sectors must be a whole divisor of the lidar's {beams} beams, "
+                                 f"got {sectors!r}")
+
+    @property
+    def lidar_observations(self) -> int:
+        """Values of the policy's observation that come from the lidar (0 without one)."""
+        return 0 if self.lidar is None else self.lidar_sectors

@@ -214,6 +214,16 @@ class VrxTaskConfig:
     def num_actions(self) -> int:
         return len(self.vessel.actions)
 
+    @property
+    def path_lidar(self):
+        """The lidar the policy sees the path's buoys through (a ``LidarConfig``; None: none, or not the path)."""
+        return self.path_course.lidar if self.kind is VrxTask.FOLLOW_PATH and self.path_course is not None else None
+
+    @property
+    def lidar_observations(self) -> int:
+        """Values of the policy's observation that come from the path's lidar (after the last actions)."""
+        return 0 if self.path_lidar is None else self.path_course.lidar_sectors
+
     def enabled_actions(self) -> list[int]:
         """1 for each of the vessel's actions the task uses, else 0, in the vessel's column order."""
         used = set(a.name for a in self.vessel.actions) if self.actions is None else set(self.actions)

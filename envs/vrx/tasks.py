@@ -14,13 +14,26 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from ocean_warp.perception.lidar_config import LidarConfig
 from ocean_warp.wind import WindConfig
 
 from ..tasks.vrx_conditions import VrxConditions
 from .path_course_config import PathCourseConfig
 from .task_config import VrxStartConfig, VrxTask, VrxTaskConfig, wamv_vessel
 
-__all__ = ["station_keeping_task", "wayfinding_task", "follow_path_task", "start_from"]
+__all__ = ["station_keeping_task", "wayfinding_task", "follow_path_task", "start_from", "path_lidar"]
+
+
+def path_lidar(**changes) -> LidarConfig:
+    """The follow-the-path task's lidar. VRX's WAM-V carries a 16-beam lidar at x 0.7, z 1.8 m pitched 8 deg down
+    (``vrx_urdf/wamv_gazebo/config/wamv_config/example_component_config.yaml``, ``lidar_wamv``), whose points a
+    team flattens onto the water to find the buoys; its channels 2 deg apart would pass over or under a 0.5 m
+    buoy beyond a few metres. Here that flattened scan directly: a sensor at the waterline between the pontoons
+    (x 0.7 m, z -0.1 m), 3 channels at -2, 0 and +2 deg (the boat's pitch and heave in waves) of 360 beams,
+    30 m, exact, the sea's returns filtered out; then ``changes``."""
+    return LidarConfig(**({"channels": 3, "beams": 360, "elevation_min": math.radians(-2.0),
+                           "elevation_max": math.radians(2.0), "max_range": 30.0, "rate": 1.0,
+                           "mount": (0.7, 0.0, -0.1), "water_returns": False} | changes))
 
 
 def start_from(conditions: VrxConditions) -> VrxStartConfig:
@@ -65,11 +78,13 @@ def wayfinding_task() -> VrxTaskConfig:
 def follow_path_task() -> VrxTaskConfig:
     """Pass 4 gates 20 m wide in order (VRX 2023: 3-9 gates, 15.8-24.2 m), the first 19-31 m away within 0.7 rad
     of the start heading, then 25-40 m apart (VRX: 25-66 m) with turns of up to 97 deg, among 6 obstacle buoys
-    (VRX: 1-17), in 0-9 m/s of wind with gusts up to 5 m/s, within 240 s."""
+    (VRX: 1-17), in 0-9 m/s of wind with gusts up to 5 m/s, within 240 s. The policy sees the buoys through the
+    lidar (:func:`path_lidar`) as 24 sectors of 15 deg (nearest return / 30 m) after the task's values and the
+    last actions."""
     conditions = VrxConditions.follow_path(gate_spacing=(25.0, 40.0))
     turn = math.degrees(conditions.gate_turn[1])
     start = dataclasses.replace(start_from(conditions), goal_spacing=conditions.gate_spacing,
                                 leg_turn_deg=(-turn, turn))
     return VrxTaskConfig(kind=VrxTask.FOLLOW_PATH, vessel=_vessel(conditions), goals=4, episode_time=240.0,
                          start=start, gate_width=20.0, lost_distance=80.0,
-                         path_course=PathCourseConfig(obstacles=6))
+                         path_course=PathCourseConfig(obstacles=6, lidar=path_lidar(), lidar_sectors=24))

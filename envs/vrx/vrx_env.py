@@ -57,7 +57,7 @@ class VrxEnv(BatchedVesselEnv):
         self.device = self.simulator.device
         self.torch_device = torch.device(wp.device_to_torch(self.device))
         self.num_actions = task.num_actions
-        self.num_policy_obs = POLICY_BASE + self.num_actions
+        self.num_policy_obs = POLICY_BASE + self.num_actions + task.lidar_observations
         self.num_critic_obs = self.num_policy_obs + PRIVILEGED
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period
@@ -91,7 +91,7 @@ class VrxEnv(BatchedVesselEnv):
         self._start_rows = struct_from(VesselStartRows, self.simulator.start)
         self.clearance = wp.full(n, _SEARCH, dtype=float, device=device)
         """(N,) each boat's gap to the nearest buoy after the last decision [m] (``_SEARCH`` with none nearer)."""
-        self.obstacles = _path_course(task, self.simulator, self.origin, self.clearance)
+        self.obstacles = _path_course(task, self.simulator, self.origin, self.clearance, self.first_env)
         """The :class:`~ocean_warp.envs.vrx.path_course.PathCourse` (gates' buoys, obstacles, contact) of the path
         with ``path_course``; None otherwise."""
         self._hold([] if self.obstacles is None else [self.obstacles])
@@ -153,12 +153,17 @@ class VrxEnv(BatchedVesselEnv):
         return float(rest()) if callable(rest) else 0.0
 
 
-def _path_course(task: VrxTaskConfig, simulator, origin: wp.array, clearance: wp.array) -> PathCourse | None:
-    """The buoys and contact of the path (a task of kind ``follow_path`` with ``path_course``), else None."""
+def _path_course(task: VrxTaskConfig, simulator, origin: wp.array, clearance: wp.array,
+                 first_env: int) -> PathCourse | None:
+    """The buoys, contact and lidar of the path (a task of kind ``follow_path`` with ``path_course``), else None.
+    The lidar's sectors follow the task's values and the last actions (policy), and the privileged values
+    (critic)."""
     if task.kind is not VrxTask.FOLLOW_PATH or task.path_course is None:
         return None
+    column = POLICY_BASE + task.num_actions
     return PathCourse(simulator, origin, task.path_course, gates=task.goals, gate_half_width=0.5 * task.gate_width,
-                      vessel=task.vessel, clearance=clearance, search=_SEARCH)
+                      vessel=task.vessel, clearance=clearance, search=_SEARCH, policy_column=column,
+                      critic_column=column + PRIVILEGED, first_env=first_env)
 
 
 def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDistribution:
