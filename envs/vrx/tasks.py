@@ -78,13 +78,13 @@ def wayfinding_task() -> VrxTaskConfig:
 def follow_path_task() -> VrxTaskConfig:
     """Pass 4 gates 20 m wide in order (VRX 2023: 3-9 gates, 15.8-24.2 m), the first 19-31 m away within 0.7 rad
     of the start heading, then 25-40 m apart (VRX: 25-66 m) with turns of up to 97 deg, among 6 obstacle buoys
-    (VRX: 1-17), in 0-9 m/s of wind with gusts up to 5 m/s, within 240 s. The policy sees the buoys through the
-    lidar (:func:`path_lidar`) as 24 sectors of 15 deg (nearest return / 30 m) after the task's values and the
-    last actions."""
+    (VRX: 1-17), in 0-9 m/s of wind with gusts up to 5 m/s, within 240 s. The policy sees its gates, not the
+    buoys (the shipped policy's observation); ``PathCourseConfig(lidar=path_lidar())`` adds the buoys as the
+    lidar's 24 sectors after the last actions, for a policy trained with them."""
     conditions = VrxConditions.follow_path(gate_spacing=(25.0, 40.0))
     turn = math.degrees(conditions.gate_turn[1])
     start = dataclasses.replace(start_from(conditions), goal_spacing=conditions.gate_spacing,
                                 leg_turn_deg=(-turn, turn))
     return VrxTaskConfig(kind=VrxTask.FOLLOW_PATH, vessel=_vessel(conditions), goals=4, episode_time=240.0,
                          start=start, gate_width=20.0, lost_distance=80.0,
-                         path_course=PathCourseConfig(obstacles=6, lidar=path_lidar(), lidar_sectors=24))
+                         path_course=PathCourseConfig(obstacles=6))

@@ -78,16 +78,17 @@ def test_sectors_show_the_buoys_of_the_table(device, rng):
     assert checked >= 6 and empty >= 100
 
 
-def test_the_layout_names_every_column():
-    task = follow_path_task()
+def test_the_layout_names_every_column(device):
+    """With the lidar: the task's values, the last actions, then 24 sectors, as many columns as the env observes;
+    without (the registered task): no sector."""
+    task = lidar_task()
     layout = vrx_policy_layout(task)
-    assert len(layout) == POLICY_BASE + len(task.vessel.actions) + SECTORS == task_observations(task)
+    observed = VrxEnv(task, 1, device=device).num_policy_obs
+    assert len(layout) == POLICY_BASE + len(task.vessel.actions) + SECTORS == observed
     assert [column.name for column in layout[-SECTORS:]] == [f"lidar_sector_{k}" for k in range(SECTORS)]
     assert "/ 30 m" in layout[-1].unit
-
-
-def task_observations(task: VrxTaskConfig) -> int:
-    return POLICY_BASE + task.num_actions + task.lidar_observations
+    plain = follow_path_task()
+    assert len(vrx_policy_layout(plain)) == POLICY_BASE + len(plain.vessel.actions)
 
 
 @pytest.mark.parametrize("sectors", [7, 0, 361])
