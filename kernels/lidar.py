@@ -18,13 +18,11 @@ from __future__ import annotations
 
 import warp as wp
 
-from .random_streams import stream_state
+from .random_streams import LIDAR_NOISE, stream_state
 from .ray_cast import HIT_NONE, SceneView, cast_ray
 
 __all__ = ["LIDAR_NOISE", "LidarModel", "beam_direction", "scan_lidar", "sector_minimum", "hit_points"]
 
-LIDAR_NOISE = wp.constant(0x3C6E_F372)
-"""Tag of the lidar's random stream (range noise and dropouts; see ``random_streams``)."""
 
 @wp.struct
 class LidarModel:

@@ -6,15 +6,13 @@ from __future__ import annotations
 
 import warp as wp
 
-from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.random_streams import LAYOUT, stream_state
 from ocean_warp.kernels.ray_cast import SHAPE_CYLINDER, SHAPE_SPHERE
 
 from .task_kernels import Course
 
 __all__ = ["LAYOUT", "KIND_BUOY", "KIND_PILE", "LayoutParameters", "ObjectRows", "draw_layouts", "append_sectors"]
 
-LAYOUT = wp.constant(0x1F83_D9AB)
-"""Tag of the random stream that draws each episode's obstacle layout."""
 KIND_BUOY = wp.constant(1)
 KIND_PILE = wp.constant(2)
 """Kinds in a layout's table (0: an empty row)."""

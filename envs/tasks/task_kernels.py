@@ -20,7 +20,7 @@ import functools
 import warp as wp
 
 from ocean_warp.kernels.eboat_actions import propeller_level
-from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.random_streams import EPISODE_START, RANDOMISATION, CURRENT_DRAW, REEF_DRAW, stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
@@ -34,14 +34,6 @@ __all__ = ["TaskParameters", "StartDistribution", "Course", "EpisodeEnds", "Boat
            "PRIVILEGED_OBS", "policy_observation_count", "evaluate_kernel", "evaluate_kernel_for", "observe_kernel",
            "observe_kernel_for", "draw_starts", "reef_level_for"]
 
-EPISODE_START = wp.constant(0x3C6E_F372)
-"""Tag of the random stream that draws each episode's start."""
-RANDOMISATION = wp.constant(0x510E_527F)
-"""Tag of the random stream that draws each episode's domain randomisation (foil and sensor-noise factors)."""
-CURRENT_DRAW = wp.constant(0x5BE0_CD19)
-"""Tag of the random stream that draws each episode's current (speed and direction)."""
-REEF_DRAW = wp.constant(0x1F83_D9AB)
-"""Tag of the random stream that draws each episode's random reef level (``ReefRule.random_level``)."""
 PRIVILEGED_OBS = 12
 """Values the critic sees beyond the policy's observation."""
 POLICY_OBS = {"seed": 5, "plus": 15}

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import warp as wp
 
-from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.random_streams import PATH_OBSTACLES, stream_state
 from ocean_warp.kernels.ray_cast import SHAPE_SPHERE
 
 from ..tasks.obstacle_kernels import KIND_BUOY, ObjectRows, _park, _planar_distance
@@ -13,8 +13,6 @@ from .vrx_kernels import VrxCourse
 
 __all__ = ["PATH_OBSTACLES", "PathLayout", "draw_path_buoys", "distance_to_segment"]
 
-PATH_OBSTACLES = wp.constant(0x5C0E_91B7)
-"""Tag of the random stream that places each episode's obstacle buoys."""
 
 
 @wp.struct

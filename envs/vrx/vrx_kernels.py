@@ -13,7 +13,7 @@ import functools
 
 import warp as wp
 
-from ocean_warp.kernels.random_streams import stream_state
+from ocean_warp.kernels.random_streams import VRX_START, VRX_CONDITIONS, stream_state
 from ocean_warp.kernels.rigid_body import STATUS_COLLIDED
 from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 
@@ -30,10 +30,6 @@ POLICY_BASE = 10
 """Policy values before the last actions (see ``vrx_observe``)."""
 PRIVILEGED = 3
 """Values the critic sees beyond the policy's: the wind in the body frame (2) and the pose error."""
-VRX_START = wp.constant(0x4A7F_3C21)
-"""Tag of the random stream that draws each episode's start."""
-VRX_CONDITIONS = wp.constant(0x2D19_86E5)
-"""Tag of the random stream that draws each episode's wind, current and sensor noise."""
 HEADING_BASE = wp.constant(0.75)
 """VRX's k in the pose error d + k^d |heading error|."""
 
