@@ -49,6 +49,6 @@ def env_sizes(task) -> EnvSizes:
     require_task("env_sizes", task)
     if isinstance(task, VrxTaskConfig):
         policy = POLICY_BASE + task.num_actions
-        return EnvSizes(task.num_actions, policy, policy + PRIVILEGED, task.goals, 0)
+        return EnvSizes(task.num_actions, policy, policy + PRIVILEGED, task.max_goals, 0)
     policy = policy_observation_count(task)
     return EnvSizes(SailingEnv.num_actions, policy, policy + PRIVILEGED_OBS, task.route_length, task.obstacle_slots)

@@ -93,9 +93,9 @@ TASK_SPECS: tuple[TaskSpec, ...] = (
              Deferred(_AGENTS, "wamv_station_keeping_agent"), "wamv_station_keeping.pt",
              "VRX's station keeping on the WAM-V: hold a goal pose for 60 s in wind, waves and current"),
     TaskSpec("WamvWayfinding-v0", Deferred(_VRX, "wayfinding_task"), Deferred(_AGENTS, "wamv_wayfinding_agent"),
-             "wamv_wayfinding.pt", "VRX's wayfinding on the WAM-V: visit four goal poses in turn"),
+             "wamv_wayfinding.pt", "VRX's wayfinding on the WAM-V: visit three to five goal poses in turn"),
     TaskSpec("WamvFollowPath-v0", Deferred(_VRX, "follow_path_task"), Deferred(_AGENTS, "wamv_follow_path_agent"),
-             "wamv_follow_path.pt", "VRX's follow-the-path on the WAM-V: pass four gates in order"),
+             "wamv_follow_path.pt", "VRX's follow-the-path on the WAM-V: pass three to nine gates in order"),
 )
 """Every task, in the order the command line lists them."""
 

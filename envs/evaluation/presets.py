@@ -76,11 +76,14 @@ def vrx_evaluation_task(task: VrxTaskConfig, *, sea_state: float | None = None, 
 def course_text(task) -> str:
     """What a task's runs sail, in words: "BCDACA", "one waypoint per run" or "a route of R waypoints",
     followed by "through buoys and piles" for a task with obstacles and "under sail alone" for a task
-    without propeller; VRX's: "station keeping", "wayfinding through G goal poses", "G gates in order"."""
+    without propeller; VRX's: "station keeping", "wayfinding through G goal poses", "G gates in order" (G a count or a range,
+    "3-5")."""
     if isinstance(task, VrxTaskConfig):
+        low, high = task.goal_range
+        count = str(low) if low == high else f"{low}-{high}"
         return {"station_keeping": f"station keeping ({task.vessel.name})",
-                "wayfinding": f"wayfinding through {task.goals} goal poses ({task.vessel.name})",
-                "follow_path": f"{task.goals} gates in order ({task.vessel.name})"}[task.kind.value]
+                "wayfinding": f"wayfinding through {count} goal poses ({task.vessel.name})",
+                "follow_path": f"{count} gates in order ({task.vessel.name})"}[task.kind.value]
     if task.route is None:
         course = "one waypoint per run"
     elif tuple(task.route) == BCDACA_ROUTE:

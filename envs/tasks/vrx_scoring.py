@@ -215,16 +215,27 @@ class StationKeepingScore:
                        self.device)
 
 
+def _counts(num_envs: int, most: int, count: wp.array | None, device) -> wp.array:
+    """``count`` checked to be an (N,) int32 array on ``device``, or a new one holding ``most`` everywhere."""
+    if count is None:
+        return wp.full(num_envs, most, dtype=wp.int32, device=device)
+    if count.dtype != wp.int32 or count.shape != (num_envs,) or count.device != device:
+        raise ValueError(f"count must be a ({num_envs},) int32 array on {device}, got {count.dtype.__name__} "
+                         f"{count.shape} on {count.device}")
+    return count
+
+
 class WayfindingScore:
     """Each of N environments' least pose error to each waypoint of its route over the episode."""
 
-    def __init__(self, num_envs: int, max_waypoints: int, device):
+    def __init__(self, num_envs: int, max_waypoints: int, device, count: wp.array | None = None):
         self.device = wp.get_device(device)
         self.min_error = wp.zeros((num_envs, max_waypoints), dtype=float, device=self.device)
         """(N, R) the least pose error reached to each waypoint (valid once ``samples`` > 0)."""
         self.samples = wp.zeros(num_envs, dtype=wp.int32, device=self.device)
-        self.count = wp.full(num_envs, max_waypoints, dtype=wp.int32, device=self.device)
-        """(N,) waypoints of each route that count (all R unless the caller writes fewer)."""
+        self.count = _counts(num_envs, max_waypoints, count, self.device)
+        """(N,) int32 waypoints of each episode's route that count, 1 to R: ``count`` where given (the caller's
+        array, read at every update and finish: an env's own count per episode), else all R."""
         self._placeholder = wp.zeros(num_envs, dtype=float, device=self.device)
 
     def update(self, position: wp.array, orientation: wp.array, origin: wp.array, route: wp.array) -> None:
@@ -248,7 +259,8 @@ class WayfindingScore:
 class FollowPathScore:
     """VRX's follow-path points of N environments' episodes (the module's docstring gives the rules)."""
 
-    def __init__(self, num_envs: int, max_gates: int, device, rules: FollowPathRules = FollowPathRules()):
+    def __init__(self, num_envs: int, max_gates: int, device, rules: FollowPathRules = FollowPathRules(),
+                 count: wp.array | None = None):
         require_positive("FollowPathScore", "max_gates", max_gates)
         self.device = wp.get_device(device)
         self.rules = rules
@@ -267,8 +279,9 @@ class FollowPathScore:
         """(N,) the episode's points so far."""
         self.finished = wp.zeros(n, dtype=wp.int32, device=self.device)
         """(N,) 1 once the last gate was crossed or invalidated (the course is over: VRX ends the task)."""
-        self.count = wp.full(n, max_gates, dtype=wp.int32, device=self.device)
-        """(N,) gates of each course that count (all G unless the caller writes fewer)."""
+        self.count = _counts(n, max_gates, count, self.device)
+        """(N,) int32 gates of each episode's course, 1 to G: ``count`` where given (as ``WayfindingScore``'s),
+        else all G; the last of them ends the course."""
         self._placeholder = wp.zeros(n, dtype=float, device=self.device)
 
     def _state(self):

@@ -26,7 +26,8 @@ class PathCourseConfig:
     opening_clearance: float = 3.0
     """Least gap between an obstacle's surface and a gate's opening (the segment between its buoys) [m]."""
     start_clearance: float = 5.0
-    """Least gap between an obstacle's surface and the boat's start [m]."""
+    """Least gap between any buoy's surface (a gate's or an obstacle) and the boat's start pose [m]: later gates
+    are drawn again where a buoy would fall nearer (``vrx_kernels.vrx_draw_starts``)."""
     spacing: float = 2.0
     """Least gap between two obstacles [m]."""
     cross_track: float = 4.0

@@ -9,7 +9,7 @@ from ocean_warp.kernels.random_streams import PATH_OBSTACLES, stream_state
 from ocean_warp.kernels.ray_cast import SHAPE_SPHERE
 
 from ..tasks.obstacle_kernels import KIND_BUOY, ObjectRows, _park, _planar_distance
-from .vrx_kernels import VrxCourse
+from .vrx_kernels import VrxCourse, gate_buoy
 
 __all__ = ["PATH_OBSTACLES", "PathLayout", "draw_path_buoys", "distance_to_segment"]
 
@@ -45,13 +45,6 @@ def distance_to_segment(p: wp.vec3, a: wp.vec3, b: wp.vec3) -> float:
 
 
 @wp.func
-def gate_buoy(gate: wp.vec3, sign: float, half_width: float) -> wp.vec3:
-    """The centre of a gate's buoy (x, y from the origin [m]): ``half_width`` to port (sign 1) or starboard (-1)
-    of the gate's centre, across the heading it is passed in."""
-    return wp.vec3(gate[0] - sign * half_width * wp.sin(gate[2]), gate[1] + sign * half_width * wp.cos(gate[2]), 0.0)
-
-
-@wp.func
 def _place_buoy(rows: ObjectRows, k: int, origin: wp.vec3, center: wp.vec3, radius: float, color: wp.vec3):
     rows.shape[k] = SHAPE_SPHERE
     rows.anchor[k] = origin + center
@@ -69,19 +62,21 @@ def draw_path_buoys(layout: PathLayout, seed: wp.array(dtype=int), first_env: in
                     course: VrxCourse, first_row: wp.array(dtype=int), rows: ObjectRows,
                     table: wp.array2d(dtype=wp.vec4), buoy_count: wp.array(dtype=int)):
     """The buoys of every environment whose ``reset_mask`` is set, after ``vrx_draw_starts`` drew its gates
-    (``course.route``): table rows 2g and 2g + 1 are gate g's port and starboard buoys (``gate_buoy``), then up
-    to ``obstacle_slots`` obstacle buoys from the environment's own stream (seed, environment ``first_env`` +
-    index, episode number), each on a random leg (from the start or the gate before to the gate), at 20-80 % of
-    it and up to ``cross_track`` off its line, kept only where its surface is ``opening_clearance`` from every
-    gate's opening (the segment between its buoys' centres), ``start_clearance`` from the start and ``spacing``
-    from the obstacles kept; the rows not kept are parked. Table rows: x, y from the origin [m], radius [m],
+    (``course.route``, ``course.goal_count`` of them): table rows 2g and 2g + 1 are gate g's port and starboard
+    buoys (``gate_buoy``), then up to ``obstacle_slots`` obstacle buoys from the environment's own stream (seed,
+    environment ``first_env`` + index, episode number), each on a random leg (from the start or the gate before
+    to the gate), at 20-80 % of it and up to ``cross_track`` off its line, kept only where its surface is
+    ``opening_clearance`` from every gate's opening (the segment between its buoys' centres), ``start_clearance``
+    from the start and ``spacing`` from the obstacles kept; the rows after them (the slots of gates beyond the
+    episode's count and the obstacles not kept) are parked. Table rows: x, y from the origin [m], radius [m],
     ``KIND_BUOY``; zeros for a parked row. ``buoy_count`` gets the buoys placed."""
     env = wp.tid()
     if reset_mask[env] == 0:
         return
     origin = course.origin[env]
     base = first_row[env]
-    for g in range(layout.gate_count):
+    gates = int(course.goal_count[env])
+    for g in range(gates):
         gate = course.route[env, g]
         for side in range(2):
             sign = 1.0 - 2.0 * float(side)
@@ -92,12 +87,12 @@ def draw_path_buoys(layout: PathLayout, seed: wp.array(dtype=int), first_env: in
             _place_buoy(rows, base + 2 * g + side, origin, center, layout.gate_buoy_radius, color)
             table[env, 2 * g + side] = wp.vec4(center[0], center[1], layout.gate_buoy_radius, float(KIND_BUOY))
     state = stream_state(seed[0], PATH_OBSTACLES, course.episode_count[env], first_env + env)
-    first = 2 * layout.gate_count
+    first = 2 * gates
     radius = layout.obstacle_radius
     kept = int(0)
     for slot in range(layout.obstacle_slots):
         for attempt in range(layout.attempts):
-            leg = wp.min(int(wp.randf(state) * float(layout.gate_count)), layout.gate_count - 1)
+            leg = wp.min(int(wp.randf(state) * float(gates)), gates - 1)
             t = 0.2 + 0.6 * wp.randf(state)
             c = layout.cross_track * (2.0 * wp.randf(state) - 1.0)
             end = course.route[env, leg]
@@ -112,7 +107,7 @@ def draw_path_buoys(layout: PathLayout, seed: wp.array(dtype=int), first_env: in
                 along = (b - a) / length
             center = a + (t * length) * along + c * wp.vec3(-along[1], along[0], 0.0)
             clear = wp.length(wp.vec2(center[0], center[1])) - radius >= layout.start_clearance
-            for g in range(layout.gate_count):
+            for g in range(gates):
                 gate = course.route[env, g]
                 opening = distance_to_segment(center, gate_buoy(gate, 1.0, layout.gate_half_width),
                                               gate_buoy(gate, -1.0, layout.gate_half_width))
@@ -125,7 +120,7 @@ def draw_path_buoys(layout: PathLayout, seed: wp.array(dtype=int), first_env: in
                 table[env, first + kept] = wp.vec4(center[0], center[1], radius, float(KIND_BUOY))
                 kept = kept + 1
                 break
-    for slot in range(kept, layout.obstacle_slots):
-        _park(rows, base + first + slot, origin, layout.parked_depth)
-        table[env, first + slot] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+    for row in range(first + kept, 2 * layout.gate_count + layout.obstacle_slots):
+        _park(rows, base + row, origin, layout.parked_depth)
+        table[env, row] = wp.vec4(0.0, 0.0, 0.0, 0.0)
     buoy_count[env] = first + kept

@@ -1,6 +1,6 @@
 """VRX's score of every episode of a :class:`~ocean_warp.envs.vrx.VrxEnv`, kept on the device: the rule of its task
-(``ocean_warp.envs.tasks.vrx_scoring``) sampled once per decision at the boat's pose after the physics, written
-into ``final_score`` when the episode ends."""
+(``ocean_warp.envs.tasks.vrx_scoring``) sampled once per decision at the boat's pose after the physics, over the
+episode's own goals or gates (``env.goal_count``), written into ``final_score`` when the episode ends."""
 
 from __future__ import annotations
 
@@ -20,15 +20,16 @@ class VrxScorer:
 
     def __init__(self, env, gate_half_width: float):
         n, device, task = env.num_envs, env.device, env.task
+        goals = task.max_goals
         self.kind = task.kind
         self._everyone = wp.ones(n, dtype=wp.bool, device=device)
         if self.kind is VrxTask.STATION_KEEPING:
             self.rule = StationKeepingScore(n, device)
         elif self.kind is VrxTask.WAYFINDING:
-            self.rule = WayfindingScore(n, task.goals, device)
+            self.rule = WayfindingScore(n, goals, device, count=env.goal_count)
         else:
-            self.rule = FollowPathScore(n, task.goals, device)
-            self.gates = wp.zeros((n, task.goals), dtype=wp.vec4, device=device)
+            self.rule = FollowPathScore(n, goals, device, count=env.goal_count)
+            self.gates = wp.zeros((n, goals), dtype=wp.vec4, device=device)
             """(N, G) each gate's red and green buoy x, y from the environment's origin [m]."""
             self.contact = wp.zeros(n, dtype=wp.bool, device=device)
             self.half_width = float(gate_half_width)

@@ -43,6 +43,18 @@ def _range(owner: str, name: str, value, low: float, high: float, unit: str = ""
     return (a, b)
 
 
+def _goal_count(owner: str, value) -> int | tuple[int, int]:
+    """``goals`` as an int, or as a (low, high) pair of ints in order; each within 1 to 16."""
+    if isinstance(value, (tuple, list)):
+        if len(value) != 2:
+            raise ValueError(f"{owner}.goals must be a count or a (low, high) pair of counts, got {value!r}")
+        low, high = (require_int_in_range(owner, "goals", v, 1, 16) for v in value)
+        if low > high:
+            raise ValueError(f"{owner}.goals must have low <= high, got {value!r}")
+        return (low, high)
+    return require_int_in_range(owner, "goals", value, 1, 16)
+
+
 @dataclasses.dataclass(frozen=True)
 class VrxRewardConfig:
     """The reward of a decision: progress in pose error, a cost of the error and of the thrust, a bonus per goal
@@ -124,8 +136,9 @@ class VrxTaskConfig:
     kind: VrxTask = VrxTask.STATION_KEEPING
     vessel: Any = dataclasses.field(default_factory=wamv_vessel)
     """The :class:`~ocean_warp.vessel.Vessel` that sails it (default the WAM-V); its config holds the sea."""
-    goals: int = 1
-    """Goal poses of an episode (station keeping: 1) or gates of the path."""
+    goals: int | tuple[int, int] = 1
+    """Goal poses of an episode (station keeping: 1) or gates of the path: a count, or a (low, high) range each
+    episode draws its own count from, uniformly, low and high included (VRX 2023: 3-5 waypoints, 3-9 gates)."""
     decision_period: float = 0.5
     """Simulated time of one decision [s]."""
     episode_time: float = 60.0
@@ -158,8 +171,8 @@ class VrxTaskConfig:
         if self.actions is not None:
             object.__setattr__(self, "actions", tuple(self.actions))
             require_actions(f"{owner}.actions", self.vessel, self.actions)
-        object.__setattr__(self, "goals", require_int_in_range(owner, "goals", self.goals, 1, 16))
-        if self.kind is VrxTask.STATION_KEEPING and self.goals != 1:
+        object.__setattr__(self, "goals", _goal_count(owner, self.goals))
+        if self.kind is VrxTask.STATION_KEEPING and self.goal_range != (1, 1):
             raise ValueError(f"{owner}.goals must be 1 for station keeping, got {self.goals}")
         for name, unit in (("decision_period", " [s]"), ("episode_time", " [s]"), ("reach_error", " [m]"),
                            ("gate_width", " [m]"),
@@ -176,6 +189,14 @@ class VrxTaskConfig:
             raise ValueError(f"{owner}.reward must be a VrxRewardConfig, got {self.reward!r}")
         if self.path_course is not None and not isinstance(self.path_course, PathCourseConfig):
             raise ValueError(f"{owner}.path_course must be a PathCourseConfig or None, got {self.path_course!r}")
+        if self.kind is VrxTask.FOLLOW_PATH and self.path_course is not None:
+            # A gate faced along a leg pointing away from the start keeps its buoys half its width off that line:
+            # the draw's fallback, so the start clearance holds whatever the legs' turns.
+            course = self.path_course
+            if 0.5 * self.gate_width - course.gate_buoy_radius < course.start_clearance:
+                raise ValueError(f"{owner}.gate_width ({self.gate_width} m) must leave its buoys' surfaces at least "
+                                 f"path_course.start_clearance ({course.start_clearance} m) off the centre line: "
+                                 f"gate_width / 2 - gate_buoy_radius >= start_clearance")
 
     @property
     def simulator(self):
@@ -192,8 +213,18 @@ class VrxTaskConfig:
         return max(1, int(round(self.episode_time / self.decision_period)))
 
     @property
+    def goal_range(self) -> tuple[int, int]:
+        """The (fewest, most) goals or gates of an episode (equal for a fixed count)."""
+        return (self.goals, self.goals) if isinstance(self.goals, int) else self.goals
+
+    @property
+    def max_goals(self) -> int:
+        """The most goals or gates of an episode: the width of the route arrays."""
+        return self.goal_range[1]
+
+    @property
     def route_length(self) -> int:
-        return self.goals
+        return self.max_goals
 
     @property
     def start_point(self) -> tuple[float, float]:

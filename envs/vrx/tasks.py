@@ -2,8 +2,9 @@
 ``WamvFollowPath-v0``): the WAM-V and each episode drawn in VRX 2023's ranges
 (``ocean_warp.envs.tasks.vrx_conditions.VrxConditions``, each with its source).
 
-Where they differ from VRX: the wind blows from any direction (VRX's worlds use three), goals and gates count
-a fixed number per task (VRX: 3-5 waypoints, 3-9 gates), gates are 20 m wide (VRX: 15.8-24.2 m), training
+Each episode draws its own count of goals or gates in VRX's range (``VrxConditions.waypoints``: 3-5 waypoints,
+3-9 gates). Where they differ from VRX: the wind blows from any direction (VRX's worlds use three), the count of
+gates is any of 3 to 9 (VRX's worlds have 3, 6 or 9), gates are 20 m wide (VRX: 15.8-24.2 m), training
 episodes are shorter than VRX's 300 s (``ocean-warp eval --time-limit 300`` scores as VRX does), and the sea is
 one per batch (its height is the vessel's ocean's; training draws it per iteration in VRX's 0-0.72 m:
 ``training.agents``). VRX has no current; neither do these.
@@ -66,25 +67,27 @@ def station_keeping_task() -> VrxTaskConfig:
 
 
 def wayfinding_task() -> VrxTaskConfig:
-    """Visit 4 goal poses (VRX 2023: 3-5) on legs of 11-40 m (VRX: 11-60 m) turning any way, in 0-8 m/s of wind
-    with gusts up to 2 m/s, within 240 s; a goal counts as reached within a pose error of 1 m."""
+    """Visit 3 to 5 goal poses (VRX 2023's range, drawn per episode) on legs of 11-40 m (VRX: 11-60 m) turning any
+    way, in 0-8 m/s of wind with gusts up to 2 m/s, within 240 s; a goal counts as reached within a pose error of
+    1 m."""
     conditions = VrxConditions.wayfinding(goal_distance=(11.0, 40.0))
     start = dataclasses.replace(start_from(conditions), goal_spacing=conditions.goal_distance,
                                 leg_turn_deg=(-180.0, 180.0))
-    return VrxTaskConfig(kind=VrxTask.WAYFINDING, vessel=_vessel(conditions), goals=4, episode_time=240.0,
-                         start=start)
+    return VrxTaskConfig(kind=VrxTask.WAYFINDING, vessel=_vessel(conditions), goals=conditions.waypoints,
+                         episode_time=240.0, start=start)
 
 
 def follow_path_task() -> VrxTaskConfig:
-    """Pass 4 gates 20 m wide in order (VRX 2023: 3-9 gates, 15.8-24.2 m), the first 19-31 m away within 0.7 rad
-    of the start heading, then 25-40 m apart (VRX: 25-66 m) with turns of up to 97 deg, among 6 obstacle buoys
-    (VRX: 1-17), in 0-9 m/s of wind with gusts up to 5 m/s, within 240 s. The policy sees its gates, not the
-    buoys (the shipped policy's observation); ``PathCourseConfig(lidar=path_lidar())`` adds the buoys as the
-    lidar's 24 sectors after the last actions, for a policy trained with them."""
+    """Pass 3 to 9 gates (drawn per episode; VRX 2023: 3, 6 or 9) 20 m wide (VRX: 15.8-24.2 m) in order, the first
+    19-31 m away within 0.7 rad of the start heading, then 25-40 m apart (VRX: 25-66 m) with turns of up to 97 deg,
+    among 6 obstacle buoys (VRX: 1-17) and every buoy at least 5 m from the start, in 0-9 m/s of wind with gusts up
+    to 5 m/s, within 240 s. The policy sees its gates, not the buoys (the shipped policy's observation);
+    ``PathCourseConfig(lidar=path_lidar())`` adds the buoys as the lidar's 24 sectors after the last actions, for a
+    policy trained with them."""
     conditions = VrxConditions.follow_path(gate_spacing=(25.0, 40.0))
     turn = math.degrees(conditions.gate_turn[1])
     start = dataclasses.replace(start_from(conditions), goal_spacing=conditions.gate_spacing,
                                 leg_turn_deg=(-turn, turn))
-    return VrxTaskConfig(kind=VrxTask.FOLLOW_PATH, vessel=_vessel(conditions), goals=4, episode_time=240.0,
-                         start=start, gate_width=20.0, lost_distance=80.0,
+    return VrxTaskConfig(kind=VrxTask.FOLLOW_PATH, vessel=_vessel(conditions), goals=conditions.waypoints,
+                         episode_time=240.0, start=start, gate_width=20.0, lost_distance=80.0,
                          path_course=PathCourseConfig(obstacles=6))

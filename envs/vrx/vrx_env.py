@@ -62,18 +62,22 @@ class VrxEnv(BatchedVesselEnv):
         self.max_episode_length = task.max_episode_length
         self.decision_period = task.decision_period
         self.steps_per_decision = task.steps_per_decision
-        self.parameters = struct_from(VrxParameters, task, task.reward, kind=_KIND[task.kind], goal_count=task.goals,
+        self.parameters = struct_from(VrxParameters, task, task.reward, kind=_KIND[task.kind],
+                                      goal_count=task.max_goals, goal_count_low=task.goal_range[0],
                                       num_actions=self.num_actions,
                                       max_episode_length=task.max_episode_length)
         self.start_distribution = _start_distribution(task, self._start_height())
 
-        n, device, goals = self.num_envs, self.device, task.goals
+        n, device, goals = self.num_envs, self.device, task.max_goals
         zeros = lambda shape, dtype=float: wp.zeros(shape, dtype=dtype, device=device)  # noqa: E731
         self._seed = wp.array([self.seed], dtype=int, device=device)
         origins = environment_origins(self.first_env + n, self.simulator.ocean.config.tile_size, True)
         self.origin = wp.array(origins[self.first_env:], dtype=wp.vec3, device=device)
         self.route = zeros((n, goals), wp.vec3)
-        """(N, G) each environment's goal poses: x, y from its origin [m] and the heading [rad]."""
+        """(N, G) each environment's goal poses: x, y from its origin [m] and the heading [rad]; the columns from
+        ``goal_count`` on repeat the episode's last goal."""
+        self.goal_count = wp.full(n, goals, dtype=wp.int32, device=device)
+        """(N,) int32 goals (gates) of each environment's episode, drawn at its start in ``task.goal_range``."""
         self._allocate_decision_arrays()
         self.propeller_level = zeros(n, wp.int32)
         """(N,) zeros: VRX's vessels have no propeller levels (the buffer every env has)."""
@@ -82,7 +86,7 @@ class VrxEnv(BatchedVesselEnv):
         """The vessel's action columns the task uses (None: all of them)."""
         self._course = VrxCourse()
         c = self._course
-        c.origin, c.route, c.target_index = self.origin, self.route, self.target_index
+        c.origin, c.route, c.goal_count, c.target_index = self.origin, self.route, self.goal_count, self.target_index
         c.target_world = self.target_world
         c.previous_error, c.previous_position = zeros(n), zeros(n, wp.vec3)
         c.episode_length, c.episode_return = self.episode_length, self.episode_return
@@ -161,9 +165,9 @@ def _path_course(task: VrxTaskConfig, simulator, origin: wp.array, clearance: wp
     if task.kind is not VrxTask.FOLLOW_PATH or task.path_course is None:
         return None
     column = POLICY_BASE + task.num_actions
-    return PathCourse(simulator, origin, task.path_course, gates=task.goals, gate_half_width=0.5 * task.gate_width,
-                      vessel=task.vessel, clearance=clearance, search=_SEARCH, policy_column=column,
-                      critic_column=column + PRIVILEGED, first_env=first_env)
+    return PathCourse(simulator, origin, task.path_course, gates=task.max_goals,
+                      gate_half_width=0.5 * task.gate_width, vessel=task.vessel, clearance=clearance, search=_SEARCH,
+                      policy_column=column, critic_column=column + PRIVILEGED, first_env=first_env)
 
 
 def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDistribution:
@@ -181,4 +185,7 @@ def _start_distribution(task: VrxTaskConfig, start_height: float) -> VrxStartDis
     d.noise_scale_low, d.noise_scale_high = s.sensor_noise_scale
     d.start_speed_low, d.start_speed_high = s.start_speed
     d.start_height = start_height
+    d.gate_half_width = 0.5 * task.gate_width
+    buoys = task.path_course if task.kind is VrxTask.FOLLOW_PATH else None
+    d.buoy_clearance = 0.0 if buoys is None else buoys.start_clearance + buoys.gate_buoy_radius
     return d

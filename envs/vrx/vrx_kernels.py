@@ -20,7 +20,7 @@ from ocean_warp.kernels.spatial import PI, heading_of, vec6, wrap_angle
 from .reward_terms import VRX_REWARD_TERMS, effort_cost, error_cost, flagged_penalty, pose_progress, reach_bonus
 
 __all__ = ["VrxParameters", "VrxStartDistribution", "VrxCourse", "VesselStartRows", "STATION_KEEPING",
-           "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "vrx_evaluate_kernel",
+           "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "gate_buoy", "vrx_evaluate_kernel",
            "vrx_observe", "vrx_draw_starts", "vrx_path_inputs"]
 
 STATION_KEEPING = wp.constant(0)
@@ -32,12 +32,17 @@ PRIVILEGED = 3
 """Values the critic sees beyond the policy's: the wind in the body frame (2) and the pose error."""
 HEADING_BASE = wp.constant(0.75)
 """VRX's k in the pose error d + k^d |heading error|."""
+GATE_ATTEMPTS = wp.constant(8)
+"""Draws of a later gate's leg before it turns straight away from the start (``vrx_draw_starts``)."""
 
 
 @wp.struct
 class VrxParameters:
     kind: int
     goal_count: int
+    """The most goals (gates) of an episode: the route's width."""
+    goal_count_low: int
+    """The fewest; an episode draws its own count in [goal_count_low, goal_count]."""
     num_actions: int
     reach_error: float
     """[m]"""
@@ -82,6 +87,10 @@ class VrxStartDistribution:
     start_speed_low: float
     start_speed_high: float
     start_height: float
+    gate_half_width: float
+    """Half the width between a gate's buoys' centres [m]."""
+    buoy_clearance: float
+    """Least distance from the start to a gate buoy's centre [m] (0: gates without buoys, no constraint)."""
 
 
 @wp.struct
@@ -90,6 +99,8 @@ class VrxCourse:
 
     origin: wp.array(dtype=wp.vec3)
     route: wp.array2d(dtype=wp.vec3)
+    goal_count: wp.array(dtype=wp.int32)
+    """The episode's own count of goals (gates); the route's later columns repeat its last goal."""
     target_index: wp.array(dtype=int)
     previous_error: wp.array(dtype=float)
     """The pose error to the current goal after the last decision [m]."""
@@ -132,6 +143,27 @@ def goal_offset(goal: wp.vec3, local: wp.vec3, yaw: float) -> wp.vec3:
     c = wp.cos(yaw)
     s = wp.sin(yaw)
     return wp.vec3(c * dx + s * dy, -s * dx + c * dy, wrap_angle(goal[2] - yaw))
+
+
+@wp.func
+def gate_buoy(gate: wp.vec3, sign: float, half_width: float) -> wp.vec3:
+    """The centre of a gate's buoy (x, y from the origin [m]): ``half_width`` to port (sign 1, green) or starboard
+    (-1, red) of the gate's centre, across the heading it is passed in."""
+    return wp.vec3(gate[0] - sign * half_width * wp.sin(gate[2]), gate[1] + sign * half_width * wp.cos(gate[2]), 0.0)
+
+
+@wp.func
+def gate_clear_of_start(gate: wp.vec3, half_width: float, clearance: float) -> bool:
+    """Whether both buoys of ``gate`` lie at least ``clearance`` [m] (centre to the start) from the start."""
+    port = gate_buoy(gate, 1.0, half_width)
+    starboard = gate_buoy(gate, -1.0, half_width)
+    return wp.min(wp.length(wp.vec2(port[0], port[1])), wp.length(wp.vec2(starboard[0], starboard[1]))) >= clearance
+
+
+@wp.func
+def leg_end(previous: wp.vec3, distance: float, bearing: float) -> wp.vec3:
+    """The goal ``distance`` [m] on from ``previous`` along ``bearing`` [rad], facing along it (x, y, heading)."""
+    return wp.vec3(previous[0] + distance * wp.cos(bearing), previous[1] + distance * wp.sin(bearing), bearing)
 
 
 @wp.func
@@ -223,7 +255,8 @@ def vrx_evaluate_kernel(terms: tuple[str, ...]) -> wp.Kernel:
             if wp.static(with_reach):
                 r = r + reach_bonus(p.reach_bonus)
             index += 1
-        finished = index >= p.goal_count
+        count = int(course.goal_count[env])
+        finished = index >= count
         if not finished:
             goal = course.route[env, index]
             offset = goal_offset(goal, local, yaw)
@@ -244,7 +277,7 @@ def vrx_evaluate_kernel(terms: tuple[str, ...]) -> wp.Kernel:
         time_out[env] = timed
         done[env] = ended or timed
         total = course.episode_return[env] + r
-        course.target_index[env] = wp.min(index, p.goal_count - 1)
+        course.target_index[env] = wp.min(index, count - 1)
         course.previous_error[env] = error
         course.previous_position[env] = position[env]
         if ended or timed:
@@ -293,7 +326,7 @@ def vrx_observe(
     local = position[env] - course.origin[env]
     yaw = heading_of(orientation[env])
     offset = goal_offset(course.route[env, index], local, yaw)
-    following = goal_offset(course.route[env, wp.min(index + 1, p.goal_count - 1)], local, yaw)
+    following = goal_offset(course.route[env, wp.min(index + 1, int(course.goal_count[env]) - 1)], local, yaw)
     scale = 1.0 / p.position_scale
     distance = wp.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
     nu = velocity[env]
@@ -343,8 +376,11 @@ def vrx_draw_starts(
     environment ``first_env`` + index, episode number): the boat at the origin with a random heading, the goals
     (the first at the start distance, its bearing off the start heading in the start's range; each next at the
     spacing from the one before, its leg turned from the leg before within the turn range; each with a random
-    heading, or, a gate, facing along its leg), and the wind, current and sensor noise from a
-    stream of their own. The last actions are zeroed."""
+    heading, or, a gate, facing along its leg), the episode's count of goals in the configured range (the route's
+    later columns repeat its last goal), and the wind, current and sensor noise from a stream of their own. A
+    later gate of a path with buoys whose buoy would lie nearer the start than ``buoy_clearance`` has its leg drawn
+    again, up to ``GATE_ATTEMPTS`` draws, then turned straight away from the start. The last actions are
+    zeroed."""
     env = wp.tid()
     if reset_mask[env] == 0:
         return
@@ -365,8 +401,24 @@ def vrx_draw_starts(
             turn_low = start.goal_bearing_low
             turn_high = start.goal_bearing_high
         distance = uniform(wp.randf(state), low, high)
-        bearing = wrap_angle(bearing + uniform(wp.randf(state), turn_low, turn_high))
+        leg = wrap_angle(bearing + uniform(wp.randf(state), turn_low, turn_high))
         goal_heading = uniform(wp.randf(state), -PI, PI)
+        if p.kind == FOLLOW_PATH and g > 0 and start.buoy_clearance > 0.0:
+            clear = gate_clear_of_start(leg_end(previous, distance, leg), start.gate_half_width, start.buoy_clearance)
+            for attempt in range(GATE_ATTEMPTS - 1):
+                if not clear:
+                    distance = uniform(wp.randf(state), low, high)
+                    leg = wrap_angle(bearing + uniform(wp.randf(state), turn_low, turn_high))
+                    clear = gate_clear_of_start(leg_end(previous, distance, leg), start.gate_half_width,
+                                                start.buoy_clearance)
+            if not clear:
+                # Straight away from the start: the start then lies behind the gate, on its centre line, its
+                # buoys at least half its width away (the task's config checks that this is clear).
+                if wp.length(wp.vec2(previous[0], previous[1])) > 1.0e-6:
+                    leg = wp.atan2(previous[1], previous[0])
+                else:
+                    leg = bearing
+        bearing = leg
         x = previous[0] + distance * wp.cos(bearing)
         y = previous[1] + distance * wp.sin(bearing)
         if p.kind == FOLLOW_PATH:
@@ -378,6 +430,15 @@ def vrx_draw_starts(
     rows.orientation[env] = wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), heading)
     rows.velocity[env] = vec6(uniform(wp.randf(state), start.start_speed_low, start.start_speed_high),
                               0.0, 0.0, 0.0, 0.0, 0.0)
+    # The count is drawn last so that a range's episode sails the same first goals as the fixed count would.
+    count = p.goal_count
+    if p.goal_count_low < p.goal_count:
+        span = p.goal_count - p.goal_count_low + 1
+        count = p.goal_count_low + wp.min(int(wp.randf(state) * float(span)), span - 1)
+    course.goal_count[env] = wp.int32(count)
+    last = course.route[env, count - 1]
+    for g in range(count, p.goal_count):
+        course.route[env, g] = last
     conditions = stream_state(seed[0], VRX_CONDITIONS, episode, first_env + env)
     rows.wind_speed[env] = uniform(wp.randf(conditions), start.wind_speed_low, start.wind_speed_high)
     rows.wind_direction[env] = uniform(wp.randf(conditions), start.wind_direction_low, start.wind_direction_high)
@@ -411,7 +472,8 @@ def vrx_path_inputs(
     obstacle now (its COLLIDED flag)."""
     env, g = wp.tid()
     gate = route[env, g]
-    across = wp.vec2(-wp.sin(gate[2]), wp.cos(gate[2])) * half_width
-    gates[env, g] = wp.vec4(gate[0] - across[0], gate[1] - across[1], gate[0] + across[0], gate[1] + across[1])
+    red = gate_buoy(gate, -1.0, half_width)
+    green = gate_buoy(gate, 1.0, half_width)
+    gates[env, g] = wp.vec4(red[0], red[1], green[0], green[1])
     if g == 0:
         contact[env] = (status[env] & STATUS_COLLIDED) != 0

@@ -212,3 +212,33 @@ def test_follow_path_kernel_matches_numpy(device, rng):
     # reset_masked: a new course, nothing written
     score.reset_masked(wp.array(np.ones(n, bool), dtype=wp.bool, device=device))
     assert np.all(score.score.numpy() == 0.0) and np.all(score.last_crossed.numpy() == -1)
+
+
+def test_follow_path_scores_each_course_over_its_own_gates(device):
+    """One batch of four courses on the same four gates (x = 10, 20, 30, 40; 5 m half width) with 2, 3, 4 and 4
+    gates that count (the caller's ``count`` array): every boat runs along y = 0 from x = 0 to 50, except the last,
+    which stops at x = 25. Hand-computed: a course of c gates all crossed in order scores 10 c + (c - 1) bonuses
+    for the consecutive gates + 1 for the last = 11 c (22, 33, 44), the gates after its last ignored; the boat
+    that stops after two of four scores 10 + 11 = 21 and has not finished."""
+    n, dt = 4, 0.5
+    gates = np.broadcast_to(_gates_along_x([10, 20, 30, 40]), (n, 4, 4))
+    count = wp.array(np.array([2, 3, 4, 4], np.int32), dtype=wp.int32, device=device)
+    score = FollowPathScore(n, 4, device, count=count)
+    assert score.count is count
+    origin = _vec3(np.zeros((n, 3)), device)
+    gates_wp = wp.array(np.ascontiguousarray(gates, dtype=np.float32), dtype=wp.vec4, device=device)
+    no_contact = wp.zeros(n, dtype=wp.bool, device=device)
+    for x in np.arange(0.25, 50.0, 0.5):  # off the gates' lines: each sample lies clearly before or after
+        xs = np.array([x, x, x, min(x, 25.25)])
+        score.update(_vec3(np.column_stack([xs, np.zeros((n, 2))]), device), origin, gates_wp, no_contact, dt)
+    np.testing.assert_array_equal(score.finished.numpy(), [1, 1, 1, 0])
+    final = wp.zeros(n, dtype=float, device=device)
+    score.finish(wp.array(np.ones(n, bool), dtype=wp.bool, device=device), final)
+    np.testing.assert_allclose(final.numpy(), [22.0, 33.0, 44.0, 21.0])
+
+
+def test_a_count_array_that_does_not_fit_is_named(device):
+    with pytest.raises(ValueError, match=r"count must be a \(3,\) int32 array"):
+        WayfindingScore(3, 4, device, count=wp.zeros(3, dtype=float, device=device))
+    with pytest.raises(ValueError, match=r"count must be a \(3,\) int32 array"):
+        FollowPathScore(3, 4, device, count=wp.zeros(2, dtype=wp.int32, device=device))
