@@ -3,8 +3,13 @@
 A vessel (the E-Boat, the WAM-V) is a preset on the core (hull, fleet, force models): it builds a
 simulator of N boats of its kind and says what its actions mean and what it looks like. Everything above
 the core takes a :class:`Vessel` and reads the common part of its simulator's state (:class:`VesselSimulator`),
-never a particular vessel's module, in the manner of Newton's ``solver.step(state_in, state_out, control,
-contacts, dt)`` and Isaac Lab's one-line robot swap.
+never a particular vessel's module, as Isaac Lab swaps a robot in one line.
+
+As in Newton and MuJoCo, what describes (the vessel and its config), what moves (``state``) and what is
+commanded (``control``) are kept apart. Unlike Newton's ``solver.step(state_in, state_out, control, contacts,
+dt)``, a step advances ``state`` in place with the ``dt`` of the config, and contact is one of the simulator's
+force models: every kernel of a step reads and writes the same arrays, which the captured CUDA graph of a
+decision binds once. Two states to swap would mean a second copy of every array and a graph per pairing.
 
 Actions are always a (N, A) float32 array in [-1, 1]; ``Vessel.actions`` names each column and says what
 it commands, and ``VesselSimulator.launch_actions`` is the kernel that turns them into the simulator's
