@@ -21,7 +21,7 @@ import numpy as np
 from .meshes import MeshData
 
 __all__ = ["ActionSpec", "VesselPart", "PartScaling", "CollisionShape", "Vessel", "VesselSimulator", "require_vessel",
-           "require_actions", "part_scaling"]
+           "require_actions", "part_scaling", "sensor_mount"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -69,6 +69,18 @@ def part_scaling(vessel) -> PartScaling | None:
     """The vessel's :class:`PartScaling` (its optional ``part_scaling()``), None where it has none."""
     method = getattr(vessel, "part_scaling", None)
     return method() if callable(method) else None
+
+
+def sensor_mount(vessel, name: str) -> tuple[float, float, float]:
+    """Where ``vessel`` carries a sensor at its place ``name`` (``"masthead"``...): (x, y, z) [m, body frame], from
+    the vessel's optional ``sensor_mounts()`` mapping; ``ValueError`` naming the places it has."""
+    method = getattr(vessel, "sensor_mounts", None)
+    mounts = dict(method()) if callable(method) else {}
+    if name not in mounts:
+        known = ", ".join(mounts) or "none"
+        raise ValueError(f"sensor_mount: the {getattr(vessel, 'name', type(vessel).__name__)} has no sensor place "
+                         f"{name!r} (its places: {known})")
+    return tuple(float(v) for v in mounts[name])
 
 
 @dataclasses.dataclass(frozen=True)

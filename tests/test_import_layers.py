@@ -129,11 +129,6 @@ VESSEL_BLIND = ("ocean_warp.perception", "ocean_warp.usd", "ocean_warp.ros", "oc
 """The core's modules that take a vessel (``ocean_warp.vessel``) and must not import a particular one."""
 
 KNOWN_VESSEL_IMPORTS = {
-    # The scene's default boat: Scene(..., boom_angle=...) without parts draws the E-Boat as before the seam.
-    "ocean_warp.perception.scene": {"ocean_warp.eboat.simulator_config.EBoatSimulatorConfig",
-                                    "ocean_warp.eboat.vessel.EBoatVessel"},
-    # The lidar's default mount, the E-Boat's masthead (a vessel does not say where its sensors sit yet).
-    "ocean_warp.perception.lidar_config": {"ocean_warp.eboat.eboat.MAST_LENGTH", "ocean_warp.eboat.sheet.MAST_STEP"},
     # The E-Boat's own stage layout (Boom/Reef, the Bodies/Booms/Sails/Rudders instancers, sails at their reef),
     # which its stages keep; any other vessel is drawn part by part (ocean_warp.usd.vessel_prims).
     "ocean_warp.usd.boat_prototype": {f"ocean_warp.eboat.parts.{name}"
