@@ -62,10 +62,8 @@ def test_a_stage_of_two_wamvs_follows_the_simulated_poses(tmp_path, rng):
                 np.testing.assert_allclose(drawn[:, :3], expected, atol=1e-4, err_msg=f"boat {boat} {name}")
 
 
-def test_a_vessel_fleet_takes_joints_not_the_eboats_angles(tmp_path):
+def test_a_vessel_fleet_refuses_missing_joints_and_levels_it_has_none_of(tmp_path):
     vessel = Wamv()
-    with pytest.raises(ValueError, match=r"FleetDrawing: a vessel is drawn one prim per boat"):
-        FleetDrawing(2, vessel=vessel, instanced=True)
     with pytest.raises(ValueError, match=r"FleetDrawing\.vessel: expected a vessel"):
         FleetDrawing(2, vessel="WAM-V")
     recorder = StageRecorder(tmp_path / "bad.usda", fps=2.0, fleet=FleetDrawing(2, vessel=vessel))
@@ -73,8 +71,8 @@ def test_a_vessel_fleet_takes_joints_not_the_eboats_angles(tmp_path):
         where, facing = np.zeros((2, 3)), [[0.0, 0.0, 0.0, 1.0]] * 2
         with pytest.raises(ValueError, match=r"joints\['thruster_angle'\] is required"):
             recorder.record(0.0, where, facing)
-        with pytest.raises(ValueError, match=r"not boom_angles"):
-            recorder.record(0.0, where, facing, [0.1, 0.2], joints={"thruster_angle": np.zeros((2, 2))})
+        with pytest.raises(ValueError, match=r"levels given, but the WAM-V draws no part at a size of each boat's"):
+            recorder.record(0.0, where, facing, joints={"thruster_angle": np.zeros((2, 2))}, levels=[0, 0])
         with pytest.raises(ValueError, match=r"joints\['thruster_angle'\] must have shape \(2,\) or \(2, C\)"):
             recorder.record(0.0, where, facing, joints={"thruster_angle": np.zeros((3, 2))})
     finally:
