@@ -6,6 +6,10 @@ the core takes a :class:`Vessel` and reads the common part of its simulator's st
 never a particular vessel's module, in the manner of Newton's ``solver.step(state_in, state_out, control,
 contacts, dt)`` and Isaac Lab's one-line robot swap.
 
+Two things a vessel may say, each through an optional method read by a function here: which parts a viewer
+draws at a size of each boat's own (``part_scaling()``, :func:`part_scaling`) and where its sensors sit
+(``sensor_mounts()``, :func:`sensor_mount`).
+
 Actions are always a (N, A) float32 array in [-1, 1]; ``Vessel.actions`` names each column and says what
 it commands, and ``VesselSimulator.launch_actions`` is the kernel that turns them into the simulator's
 commands (clamped and scaled), graph-safe.
