@@ -202,13 +202,14 @@ def _obstacle_course(task: TaskConfig, simulator: EBoatSimulator, origin: wp.arr
     the E-Boats, environment i holding boat i from its ``origin`` (N,) [m], with the task's free rows."""
     if task.obstacles is None and task.lidar is None and task.contact is None:
         return None
-    n, state = simulator.count, simulator.state
-    scene = Scene(simulator.ocean, envs=n, boat_env=np.arange(n), boat_position=state.position,
-                  boat_orientation=state.orientation, boom_angle=state.boom_angle, origins=origin.numpy(),
-                  water_visible=True, boat=simulator.config.boat, free_slots=task.obstacle_slots,
-                  reef_level=state.reef_level)
+    n = simulator.count
+    vessel = EBoatVessel(task.simulator)
+    # The parts the sensors have always seen: the physics hull's detail, no rudder.
+    scene = Scene.for_vessel(vessel, simulator, parts=vessel.parts(hull_detail=1, rudder=False), envs=n,
+                             boat_env=np.arange(n), origins=origin.numpy(), water_visible=True,
+                             free_slots=task.obstacle_slots)
     return ObstacleCourse(scene, layout=task.obstacles, contact=task.contact,
-                          shape=EBoatVessel(task.simulator).collision_shape(), clearance=clearance,
+                          shape=vessel.collision_shape(), clearance=clearance,
                           proximity_range=task.reward.proximity_range, lidar=task.lidar,
                           lidar_sectors=task.lidar_sectors, policy_column=lidar_column, first_env=first_env)
 

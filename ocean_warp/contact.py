@@ -1,6 +1,6 @@
 """Contact: boats against the objects and other boats of their environment, as a force model of the simulator.
 
-    scene = Scene.for_simulator(sim, objects=[SceneObject.pillar((6.0, 0.0), radius=0.5)])
+    scene = Scene.for_simulator(sim, objects=[SceneObject.pillar((6.0, 0.0), radius=0.5)], vessel=vessel)
     contact = Contact(scene, ContactConfig(), shape=vessel.collision_shape())
     sim.simulator.add_model(contact)             # flags BoatStatus.COLLIDED and pushes the boats apart
 

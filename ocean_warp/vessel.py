@@ -11,6 +11,10 @@ dt)``, a step advances ``state`` in place with the ``dt`` of the config, and con
 force models: every kernel of a step reads and writes the same arrays, which the captured CUDA graph of a
 decision binds once. Two states to swap would mean a second copy of every array and a graph per pairing.
 
+Two things a vessel may say, each through an optional method read by a function here: which parts a viewer
+draws at a size of each boat's own (``part_scaling()``, :func:`part_scaling`) and where its sensors sit
+(``sensor_mounts()``, :func:`sensor_mount`).
+
 Actions are always a (N, A) float32 array in [-1, 1]; ``Vessel.actions`` names each column and says what
 it commands, and ``VesselSimulator.launch_actions`` is the kernel that turns them into the simulator's
 commands (clamped and scaled), graph-safe.
@@ -26,7 +30,7 @@ import numpy as np
 from .meshes import MeshData
 
 __all__ = ["ActionSpec", "VesselPart", "PartScaling", "CollisionShape", "Vessel", "VesselSimulator", "require_vessel",
-           "require_actions", "part_scaling"]
+           "require_actions", "part_scaling", "sensor_mount"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -74,6 +78,18 @@ def part_scaling(vessel) -> PartScaling | None:
     """The vessel's :class:`PartScaling` (its optional ``part_scaling()``), None where it has none."""
     method = getattr(vessel, "part_scaling", None)
     return method() if callable(method) else None
+
+
+def sensor_mount(vessel, name: str) -> tuple[float, float, float]:
+    """Where ``vessel`` carries a sensor at its place ``name`` (``"masthead"``...): (x, y, z) [m, body frame], from
+    the vessel's optional ``sensor_mounts()`` mapping; ``ValueError`` naming the places it has."""
+    method = getattr(vessel, "sensor_mounts", None)
+    mounts = dict(method()) if callable(method) else {}
+    if name not in mounts:
+        known = ", ".join(mounts) or "none"
+        raise ValueError(f"sensor_mount: the {getattr(vessel, 'name', type(vessel).__name__)} has no sensor place "
+                         f"{name!r} (its places: {known})")
+    return tuple(float(v) for v in mounts[name])
 
 
 @dataclasses.dataclass(frozen=True)

@@ -128,23 +128,6 @@ def test_the_checker_finds_planted_imports_above_the_kernels():
 VESSEL_BLIND = ("ocean_warp.perception", "ocean_warp.usd", "ocean_warp.ros", "ocean_warp.contact")
 """The core's modules that take a vessel (``ocean_warp.vessel``) and must not import a particular one."""
 
-KNOWN_VESSEL_IMPORTS = {
-    # The scene's default boat: Scene(..., boom_angle=...) without parts draws the E-Boat as before the seam.
-    "ocean_warp.perception.scene": {"ocean_warp.eboat.simulator_config.EBoatSimulatorConfig",
-                                    "ocean_warp.eboat.vessel.EBoatVessel"},
-    # The lidar's default mount, the E-Boat's masthead (a vessel does not say where its sensors sit yet).
-    "ocean_warp.perception.lidar_config": {"ocean_warp.eboat.eboat.MAST_LENGTH", "ocean_warp.eboat.sheet.MAST_STEP"},
-    # The E-Boat's own stage layout (Boom/Reef, the Bodies/Booms/Sails/Rudders instancers, sails at their reef),
-    # which its stages keep; any other vessel is drawn part by part (ocean_warp.usd.vessel_prims).
-    "ocean_warp.usd.boat_prototype": {f"ocean_warp.eboat.parts.{name}"
-                                      for name in ("BODY", "BOOM", "REEF", "RUDDER", "BoatParts")},
-    "ocean_warp.usd.fleet_prims": {f"ocean_warp.eboat.parts.{name}"
-                                   for name in ("BODY", "BOOM", "REEF", "RUDDER", "BoatParts")},
-    "ocean_warp.usd.recorder": {"ocean_warp.eboat.parts.eboat_parts"},
-    "ocean_warp.usd.stage_options": {"ocean_warp.eboat.eboat.EBoatConfig"},
-}
-"""Imports of ``ocean_warp.eboat`` still made by the vessel-blind modules, each with why (issue 35)."""
-
 
 def vessel_rule(source: str, module: str, is_package: bool = False) -> list[tuple[int, str]]:
     """The seam's rule for a vessel-blind module: nothing of ``ocean_warp.eboat`` or ``ocean_warp.wamv``."""
@@ -155,15 +138,11 @@ def test_the_vessel_blind_modules_import_no_vessel():
     files = [(path, module) for path, module in _files("ocean_warp")
              if any(within(module, package) for package in VESSEL_BLIND)]
     assert len(files) > 25, "the walk found too few of the vessel-blind modules"
-    found: dict[str, set[str]] = {}
+    wrong = []
     for path, module in files:
-        for _, name in vessel_rule(path.read_text(encoding="utf-8"), module, path.name == "__init__.py"):
-            found.setdefault(module, set()).add(name)
-    wrong = {module: names - KNOWN_VESSEL_IMPORTS.get(module, set()) for module, names in found.items()}
-    wrong = {module: names for module, names in wrong.items() if names}
-    assert not wrong, f"modules that take a vessel import a particular one: {wrong}"
-    stale = {module: names - found.get(module, set()) for module, names in KNOWN_VESSEL_IMPORTS.items()}
-    assert not any(stale.values()), f"known exceptions no longer imported (drop them from the list): {stale}"
+        for line, name in vessel_rule(path.read_text(encoding="utf-8"), module, path.name == "__init__.py"):
+            wrong.append(f"{path.relative_to(REPO)}:{line}: imports {name}")
+    assert not wrong, "modules that take a vessel import a particular one:\n" + "\n".join(wrong)
 
 
 def test_the_checker_finds_planted_imports_of_a_vessel():

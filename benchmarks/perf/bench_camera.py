@@ -92,7 +92,7 @@ def measure_render(device, *, boats: int, width: int, height: int, sail: int, fr
     for _ in range(sail):
         controller.act(env)
         env.step()
-    scene = Scene.for_simulator(env.simulator, route_buoys(task))
+    scene = Scene.for_simulator(env.simulator, route_buoys(task), vessel=env.vessel)
     view = ViewCamera(scene, width, height, math.radians(config.field_of_view), max_range=VIEW_RANGE,
                       haze_distance=HAZE_DISTANCE)
     aim = chase_camera(env, view, 1.0 / config.frames_per_second)

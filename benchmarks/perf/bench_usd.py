@@ -18,6 +18,7 @@ import time
 import numpy as np
 
 import ocean_warp as ow
+from ocean_warp.eboat import EBoatVessel
 from ocean_warp.usd import FleetDrawing, OceanDrawing, StageRecorder, loop_path_for
 
 MIB = 1024.0 * 1024.0
@@ -47,13 +48,14 @@ def record_case(folder: str, *, boats: int, frames: int, instanced: bool, loop: 
     quarter_memory = float("nan")
     start = time.perf_counter()
     drawing = OceanDrawing(ocean, resolution=resolution, extent=(0.0, side, 0.0, side), loop=loop)
-    with StageRecorder(path, fps=fps, ocean=drawing, fleet=FleetDrawing(boats, instanced=instanced)) as recorder:
+    fleet = FleetDrawing(boats, instanced=instanced, vessel=EBoatVessel())
+    with StageRecorder(path, fps=fps, ocean=drawing, fleet=fleet) as recorder:
         for frame in range(frames):
             positions[:, :2] += rng.normal(0.0, 0.5, (boats, 2))
             yaw = rng.uniform(-np.pi, np.pi, boats)
             orientations = np.stack([np.zeros(boats), np.zeros(boats), np.sin(yaw / 2), np.cos(yaw / 2)], axis=1)
-            recorder.record(frame / fps, positions, orientations, rng.uniform(-1.2, 1.2, boats),
-                            rng.uniform(-0.5, 0.5, boats))
+            joints = {"boom_angle": rng.uniform(-1.2, 1.2, boats), "rudder_angle": rng.uniform(-0.5, 0.5, boats)}
+            recorder.record(frame / fps, positions, orientations, joints=joints)
             if frame == frames // 4:
                 quarter_memory = resident_mib()
     seconds = time.perf_counter() - start

@@ -97,14 +97,16 @@ class MissionStageRecorder:
             path, fps=float(frames_per_decision) / env.decision_period,
             ocean=OceanDrawing(ocean, resolution=ocean_resolution, margin=ocean_margin, normals=ocean_normals,
                                loop=loop),
-            fleet=FleetDrawing(env.num_envs, instanced=instanced, boat=env.task.simulator.boat),
+            fleet=FleetDrawing(env.num_envs, instanced=instanced, vessel=env.vessel),
             route=_course(env),
             wind=WindArrow(float(wind.wind_mean_direction.numpy()[0]), speed=float(wind.wind_mean_speed.numpy()[0])),
             objects=objects, object_labels=labels or None, **options)
         self._held = np.zeros(env.num_envs, dtype=bool)
         self._held_frame: dict[str, np.ndarray] = {}
-        self._sail_scales = env.simulator.sail_scales()
-        """Each boat's sail at its first episode's reef (drawn at the env's reset, as the stage's episodes)."""
+        scaling = self.recorder.scaling
+        self._levels = getattr(env.simulator.state, scaling.level).numpy() if scaling is not None else None
+        """Each boat's level of its scaled parts (the sail's reef) in its first episode (drawn at the env's reset,
+        as the stage's episodes)."""
 
     @property
     def object_count(self) -> int:
@@ -128,9 +130,9 @@ class MissionStageRecorder:
         period = self.env.decision_period
         for f in range(count):
             poses = (frames["object_position"][f], frames["object_orientation"][f]) if self.object_count else None
+            joints = {name: frames[name][f] for name in self.recorder.joint_names}
             self.recorder.record(time_s - period + (f + 1) * period / count, frames["position"][f],
-                                 frames["orientation"][f], frames["boom_angle"][f], frames["rudder_angle"][f],
-                                 object_poses=poses, sail_scales=self._sail_scales)
+                                 frames["orientation"][f], joints=joints, levels=self._levels, object_poses=poses)
         ended = self.env.done.numpy().astype(bool) & ~self._held
         if ended.any():
             names = BOAT_FRAMES + (("object_position", "object_orientation") if self.object_count else ())

@@ -61,7 +61,7 @@ def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: st
     from .demo_stage import MissionStageRecorder
 
     if isinstance(make_task_config(config.task_id), VrxTaskConfig):
-        return _export_vrx(config, path, device=device, progress=progress)
+        return _export_vrx(config, path, device=device, progress=progress, ascii=ascii)
     observation = None
     if config.controller == "policy":
         policy = load_policy(config.policy or shipped_policy_path(config.task_id))
@@ -90,12 +90,14 @@ def export_scenario(config: ExportConfig, path: str | os.PathLike, *, device: st
     return recorder.close()
 
 
-def _export_vrx(config: ExportConfig, path, *, device, progress: bool) -> dict[str, str]:
-    """One of VRX's tasks to a stage: its vessel drawn part by part (``StageRecorder.for_vessel``), a frame after
-    every decision (a boat whose episode ended is shown at its next start)."""
+def _export_vrx(config: ExportConfig, path, *, device, progress: bool, ascii: bool | None) -> dict[str, str]:
+    """One of VRX's tasks to a stage: its vessel drawn part by part (``StageRecorder.for_vessel``, one prim per
+    boat or point instancers as ``config.instanced`` says), a frame after every decision (a boat whose episode
+    ended is shown at its next start)."""
     from tqdm import tqdm
 
     from ocean_warp.usd.recorder import StageRecorder, record_vessel
+    from ocean_warp.usd.stage_options import FleetDrawing
 
     task = vrx_evaluation_task(make_task_config(config.task_id), sea_state=config.sea_state, wind=config.wind,
                                seed=config.seed, time_limit=max(config.duration, 1.0))
@@ -109,7 +111,9 @@ def _export_vrx(config: ExportConfig, path, *, device, progress: bool) -> dict[s
     env = make_env(task, config.boats, device=device, seed=config.seed)
     env.reset(seed=config.seed)
     controller.reset(env)
-    recorder = StageRecorder.for_vessel(path, task.vessel, env.simulator, fps=1.0 / env.decision_period)
+    fleet = FleetDrawing(config.boats, vessel=task.vessel, instanced=config.instanced)
+    recorder = StageRecorder.for_vessel(path, task.vessel, env.simulator, fps=1.0 / env.decision_period, fleet=fleet,
+                                        time_codes_per_second=config.time_codes_per_second, ascii=ascii)
     decisions = int(round(config.duration / env.decision_period))
     try:
         record_vessel(recorder, env.simulator, 0.0)

@@ -11,10 +11,10 @@ from .sheet import Version
 from .eboat_simulator import EBoatSimulator, SailingRig
 from .simulator_config import EBoatSimulatorConfig, still_water
 from .state import EBoatControl, EBoatStart, EBoatState, EBoatTensors
-from .vessel import EBOAT_ACTIONS, EBoatVessel
+from .vessel import EBOAT_ACTIONS, MASTHEAD_MOUNT, EBoatVessel
 
 __all__ = ["EBoat", "EBoatConfig", "Hydrostatics", "Profile", "Version", "EBoatSimulator", "EBoatSimulatorConfig",
            "EBoatState", "EBoatControl", "EBoatStart", "EBoatTensors", "SailingRig", "HullShape", "eboat_hull",
            "HullKind", "Ballast", "EBoatGeometry", "offsets_hull", "MassProperties", "eboat_mass_properties",
            "load_foil_table", "eboat_hydrodynamics", "still_water", "ReefedSail", "reefed_sail",
-           "EBoatVessel", "EBOAT_ACTIONS"]
+           "EBoatVessel", "EBOAT_ACTIONS", "MASTHEAD_MOUNT"]

@@ -9,11 +9,16 @@ import numpy as np
 from ..contact import boat_capsule
 from ..meshes import concatenate
 from ..vessel import ActionSpec, CollisionShape, PartScaling, VesselPart
+from .eboat import MAST_LENGTH
 from .eboat_simulator import EBoatSimulator
 from .parts import BODY, BOOM, REEF, RUDDER, eboat_parts
+from .sheet import MAST_STEP
 from .simulator_config import EBoatSimulatorConfig
 
-__all__ = ["EBoatVessel", "EBOAT_ACTIONS"]
+__all__ = ["EBoatVessel", "EBOAT_ACTIONS", "MASTHEAD_MOUNT"]
+
+MASTHEAD_MOUNT = (MAST_STEP[0], 0.0, MAST_STEP[2] + MAST_LENGTH)
+"""The top of the E-Boat's mast, 3.61 m above the waterline (body frame [m]): a 3D lidar's usual place."""
 
 EBOAT_ACTIONS = (
     ActionSpec("propeller", "electric propeller level int(5 a), -5 .. 5 (astern .. ahead)"),
@@ -60,6 +65,11 @@ class EBoatVessel:
         tack = eboat_parts(self.config.boat, hull_detail=1).sail_tack
         return PartScaling((REEF,), "reef_level", tuple(float(s) for s in self.config.boat.reef_scales),
                            tuple(float(v) for v in tack))
+
+    def sensor_mounts(self) -> dict[str, tuple[float, float, float]]:
+        """Where sensors sit (body frame [m]): ``masthead``, the top of the mast (see
+        ``ocean_warp.vessel.sensor_mount``)."""
+        return {"masthead": MASTHEAD_MOUNT}
 
     def collision_shape(self) -> CollisionShape:
         """The capsule of the physics hull (half beam radius, spanning its length)."""

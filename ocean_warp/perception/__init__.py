@@ -11,8 +11,8 @@ The hooks that scan and capture inside every decision of a ``SailingEnv`` live a
 
 from .camera import Camera, CameraConfig, ViewCamera, render_view
 from .lidar import Lidar
-from .lidar_config import BOW_MOUNT, MASTHEAD_MOUNT, LidarConfig
+from .lidar_config import BOW_MOUNT, LidarConfig
 from .scene import Scene, SceneObject, Shape
 
-__all__ = ["Scene", "SceneObject", "Shape", "LidarConfig", "Lidar", "BOW_MOUNT", "MASTHEAD_MOUNT", "CameraConfig",
+__all__ = ["Scene", "SceneObject", "Shape", "LidarConfig", "Lidar", "BOW_MOUNT", "CameraConfig",
            "Camera", "ViewCamera", "render_view"]

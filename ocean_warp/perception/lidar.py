@@ -28,10 +28,10 @@ from ..kernels.lidar import LidarModel, hit_points, scan_lidar, sector_minimum
 from ..kernels.random_streams import advance_counter
 from ..kernels.ray_cast import SceneView
 from ..validation import require_int_in_range
-from .lidar_config import BOW_MOUNT, MASTHEAD_MOUNT, LidarConfig
+from .lidar_config import BOW_MOUNT, LidarConfig
 from .scene import Scene
 
-__all__ = ["BOW_MOUNT", "MASTHEAD_MOUNT", "LidarConfig", "Lidar"]
+__all__ = ["BOW_MOUNT", "LidarConfig", "Lidar"]
 
 _MAX_STREAM_INDEX = 2**31 - 1
 """Beams are numbered (first boat + boat) x beams + beam in the random stream, a 32-bit signed offset."""

@@ -16,16 +16,12 @@ import math
 
 import numpy as np
 
-from ..eboat.eboat import MAST_LENGTH
-from ..eboat.sheet import MAST_STEP
 from ..validation import require_in_range, require_int_in_range, require_non_negative, require_positive
 
-__all__ = ["BOW_MOUNT", "MASTHEAD_MOUNT", "LidarConfig"]
+__all__ = ["BOW_MOUNT", "LidarConfig"]
 
 BOW_MOUNT = (1.1, 0.0, 0.8)
 """A sensor on a short pole on the foredeck, 0.8 m above the waterline (body frame [m]): the default mount."""
-MASTHEAD_MOUNT = (MAST_STEP[0], 0.0, MAST_STEP[2] + MAST_LENGTH)
-"""The top of the E-Boat's mast, 3.61 m above the waterline (body frame [m])."""
 
 
 def _require_triple(owner: str, field: str, value) -> tuple[float, float, float]:
@@ -63,8 +59,8 @@ class LidarConfig:
     """Scans per second [Hz] (of an ``ocean_warp.envs.sensors.LidarHook``: one scan every round(1 / (rate dt))
     physics steps)."""
     mount: tuple[float, float, float] = BOW_MOUNT
-    """The sensor's origin in the body frame [m] (default :data:`BOW_MOUNT`; :data:`MASTHEAD_MOUNT` is the
-    other usual place)."""
+    """The sensor's origin in the body frame [m] (default :data:`BOW_MOUNT`; a vessel names its own places,
+    ``ocean_warp.vessel.sensor_mount(vessel, "masthead")``)."""
     mount_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """Roll, pitch and yaw [rad] of the sensor frame against the body frame (Z-Y-X, as
     ``ocean_warp.frames``); pitch > 0 tilts the sensor's x down."""
@@ -116,15 +112,16 @@ class LidarConfig:
         return cls(**({"channels": 1, "beams": 360, "range_noise_std": 0.03} | changes))
 
     @classmethod
-    def multi_channel(cls, channels: int = 16, **changes) -> LidarConfig:
-        """A Velodyne VLP-16-like 3D lidar at the masthead: ``channels`` rows (16: 2 deg apart) over
+    def multi_channel(cls, channels: int = 16, *, mount, **changes) -> LidarConfig:
+        """A Velodyne VLP-16-like 3D lidar at ``mount`` (body frame [m]; where a vessel carries it:
+        ``sensor_mount(vessel, "masthead")``, ``ocean_warp.vessel``): ``channels`` rows (16: 2 deg apart) over
         +-15 deg, 360 deg around, 100 m, 10 Hz, +-3 cm accuracy (the data sheet's, taken as the noise's
         standard deviation), then ``changes``. The real sensor fires about 1 800 beams per channel at 10 Hz
         (0.2 deg); 360 here (1 deg), to keep thousands of boats cheap; set ``beams`` for more. Its minimum
         range (not on the data sheet) is taken as 0.5 m."""
         values = {"channels": channels, "beams": 360, "elevation_min": math.radians(-15.0),
                   "elevation_max": math.radians(15.0), "min_range": 0.5, "max_range": 100.0,
-                  "mount": MASTHEAD_MOUNT, "range_noise_std": 0.03}
+                  "mount": mount, "range_noise_std": 0.03}
         return cls(**(values | changes))
 
     # --- derived ------------------------------------------------------------------------------------

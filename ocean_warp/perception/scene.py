@@ -150,14 +150,11 @@ class Scene:
         boat_env: (B,) the environment of each boat (-1: not drawn).
         boat_position, boat_orientation: the boats' (B,) Warp arrays (vec3 [m], quat), read by every cast (bound,
             not copied).
-        parts: the :class:`~ocean_warp.vessel.VesselPart` s every boat is drawn with (``Vessel.parts()``); None:
-            the E-Boat of ``boat`` (default V-C) as the sensors have always seen it (hull, keel and mast at the
-            physics hull's detail, boom and sail; no rudder).
-        joints: the boats' joint state arrays by name (``{"thruster_angle": state.thruster_angle}``: (B,) or
-            (B, C) float32 Warp arrays [rad], bound too), one for each ``joint`` of ``parts``.
-        boom_angle: the E-Boat's (B,) boom angles [rad], the same as ``joints={"boom_angle": boom_angle}``.
-        scaling: which parts are drawn at a size of each boat's own (``Vessel.part_scaling()``; None: the E-Boat
-            sail's reef without ``parts``, else none).
+        parts: the :class:`~ocean_warp.vessel.VesselPart` s every boat is drawn with (``Vessel.parts()``; the scene
+            knows no vessel of its own: :meth:`for_vessel` reads them from one).
+        joints: the boats' joint state arrays by name (``{"boom_angle": state.boom_angle}``: (B,) or (B, C)
+            float32 Warp arrays [rad], bound too), one for each ``joint`` of ``parts``.
+        scaling: which parts are drawn at a size of each boat's own (``Vessel.part_scaling()``; None: none).
         reef_level: the boats' (B,) int32 Warp array of levels of ``scaling`` (``EBoatState.reef_level``), bound
             too: each scaled part is drawn scaled about its origin by its level's factor; None: level 0 on every
             boat.
@@ -165,7 +162,6 @@ class Scene:
             a sequence of ``envs`` such sequences, one per environment.
         origins: (envs, 3) world origin of each environment [m] (default: all at 0).
         water_visible: whether rays see the sea.
-        boat: the ``EBoatConfig`` whose parts are drawn when ``parts`` is None (default V-C).
         free_slots: rows each environment keeps after its objects for objects placed on the device later
             (an obstacle layout drawn at every reset: ``ocean_warp.envs.tasks.obstacle_course``). A free slot
             holds nothing until a kernel writes it: a sphere of radius 0 parked ``PARKED_DEPTH`` below its
@@ -173,9 +169,8 @@ class Scene:
     """
 
     def __init__(self, ocean: Ocean, *, envs: int, boat_env, boat_position: wp.array, boat_orientation: wp.array,
-                 boom_angle: wp.array | None = None, objects: Sequence = (), origins=None, water_visible: bool = True,
-                 boat=None, free_slots: int = 0, reef_level: wp.array | None = None,
-                 parts: Sequence[VesselPart] | None = None, joints: dict | None = None,
+                 parts: Sequence[VesselPart], joints: dict | None = None, objects: Sequence = (), origins=None,
+                 water_visible: bool = True, free_slots: int = 0, reef_level: wp.array | None = None,
                  scaling: PartScaling | None = None):
         if not isinstance(ocean, Ocean):
             raise ValueError(f"Scene: ocean must be an ocean_warp Ocean, got {type(ocean).__name__}")
@@ -200,13 +195,7 @@ class Scene:
         """(B,) int64 numpy: the environment each boat is drawn in (-1: not drawn)."""
 
         count = boat_position.shape[0]
-        joints = dict(joints or {})
-        if boom_angle is not None:
-            joints["boom_angle"] = boom_angle
-        if parts is None:
-            parts, default_scaling = _eboat_parts(boat)
-            scaling = scaling if scaling is not None else default_scaling
-        boat_parts = _PartTable(parts, joints, scaling, count, device)
+        boat_parts = _PartTable(parts, dict(joints or {}), scaling, count, device)
         self._meshes = list(boat_parts.meshes)
         if reef_level is None:
             reef_level = wp.zeros(count, dtype=int, device=device)
@@ -291,24 +280,20 @@ class Scene:
                               origins=env.origin.numpy(), water_visible=water_visible, free_slots=free_slots)
 
     @classmethod
-    def for_simulator(cls, sim, objects: Sequence = (), *, water_visible: bool = True, vessel=None) -> Scene:
-        """One environment with every boat of a simulator (a fleet that sees itself), its objects placed from the
-        world origin; ``vessel`` the one it simulates (None: an ``EBoatSimulator``'s E-Boat, drawn from its
-        config's boat)."""
-        if vessel is None:
-            return cls(sim.ocean, envs=1, boat_env=np.zeros(sim.count, np.int64), boat_position=sim.state.position,
-                       boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=[objects],
-                       water_visible=water_visible, boat=sim.config.boat, reef_level=sim.state.reef_level)
+    def for_simulator(cls, sim, objects: Sequence = (), *, vessel, water_visible: bool = True, parts=None) -> Scene:
+        """One environment with every boat of ``sim``, a simulator of ``vessel`` (a fleet that sees itself), its
+        objects placed from the world origin; ``parts`` as :meth:`for_vessel`'s."""
         return cls.for_vessel(vessel, sim, [objects], envs=1, boat_env=np.zeros(sim.count, np.int64),
-                              water_visible=water_visible)
+                              water_visible=water_visible, parts=parts)
 
     @classmethod
-    def for_vessel(cls, vessel, sim, objects: Sequence = (), **options) -> Scene:
+    def for_vessel(cls, vessel, sim, objects: Sequence = (), *, parts=None, **options) -> Scene:
         """The boats of ``sim``, a simulator of ``vessel`` (any ``ocean_warp.vessel.Vessel``), drawn with its parts
+        (``parts``: some of them, or at another detail, e.g. ``vessel.parts(hull_detail=1)``; None: ``parts()``)
         posed by its state's joint arrays and scaled per its ``part_scaling()``; ``options``: the constructor's
         ``envs``, ``boat_env``, ``origins``, ``water_visible`` and ``free_slots``."""
         vessel = require_vessel("Scene.for_vessel", vessel)
-        parts = vessel.parts()
+        parts = vessel.parts() if parts is None else tuple(parts)
         scaling = part_scaling(vessel)
         joints = {}
         for name in {part.joint for part in parts if part.joint is not None}:
@@ -383,18 +368,6 @@ def _state_array(vessel, sim, name: str) -> wp.array:
         raise ValueError(f"Scene: the {vessel.name}'s parts read the state array {name!r}, which its simulator "
                          f"({type(sim).__name__}) does not have")
     return array
-
-
-def _eboat_parts(boat) -> tuple[tuple[VesselPart, ...], PartScaling]:
-    """The E-Boat of ``boat`` (an ``EBoatConfig``; None: V-C) as the sensors saw it before the vessel seam."""
-    # The one import of a vessel's module here: the E-Boat is the scene's default boat for callers that
-    # pass its boom angles alone (tests/ocean_warp/perception and the tools built before the seam).
-    from ..eboat.simulator_config import EBoatSimulatorConfig
-    from ..eboat.vessel import EBoatVessel
-
-    config = EBoatSimulatorConfig() if boat is None else EBoatSimulatorConfig(boat=boat)
-    vessel = EBoatVessel(config)
-    return vessel.parts(hull_detail=1, rudder=False), vessel.part_scaling()
 
 
 _LOOKS = {"sail": 1, "metal": 1}

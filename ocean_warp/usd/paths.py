@@ -2,17 +2,17 @@
 
 from __future__ import annotations
 
-__all__ = ["WORLD", "OCEAN", "FLEET", "ROUTE", "OBJECTS", "LIDAR", "WAYPOINTS", "ROUTE_PATH", "WIND", "LOOKS", "CAMERA", "LIGHTS",
-           "SUN", "SKY", "LIBRARY", "BOAT_PROTOTYPE", "OCEAN_REST", "BOAT_COUNT_ATTRIBUTE", "WIND_DIRECTION_ATTRIBUTE",
-           "WIND_SPEED_ATTRIBUTE", "ROUTE_INDICES_ATTRIBUTE", "boat_path"]
+__all__ = ["WORLD", "OCEAN", "FLEET", "ROUTE", "OBJECTS", "LIDAR", "WAYPOINTS", "ROUTE_PATH", "WIND", "LOOKS", "CAMERA",
+           "LIGHTS", "SUN", "SKY", "LIBRARY", "OCEAN_REST", "BOAT_COUNT_ATTRIBUTE", "BOAT_ORIGINS_ATTRIBUTE",
+           "WIND_DIRECTION_ATTRIBUTE", "WIND_SPEED_ATTRIBUTE", "ROUTE_INDICES_ATTRIBUTE", "boat_path"]
 
 WORLD = "/World"
 """The default prim, a ``group`` model: everything a viewer shows lies below it."""
 OCEAN = "/World/Ocean"
 """The ocean surface (Mesh, a ``component`` model)."""
 FLEET = "/World/Fleet"
-"""The boats (an ``assembly`` model): ``Boat_0000``... (one Xform each, a ``component`` model) or the
-instancers ``Bodies``, ``Booms`` and ``Rudders``."""
+"""The boats (an ``assembly`` model): ``Boat_0000``... (one Xform each, a ``component`` model, one child per part
+of the vessel) or one point instancer per part, named as the part's prim."""
 ROUTE = "/World/Route"
 """The course (a ``component`` model): the buoys and the path."""
 WAYPOINTS = "/World/Route/Waypoints"
@@ -38,9 +38,8 @@ SUN = "/World/Lights/Sun"
 SKY = "/World/Lights/Sky"
 """A DomeLight of uniform sky colour."""
 LIBRARY = "/Library"
-"""A ``class`` prim (not drawn) holding the geometry that boats and instancers reference."""
-BOAT_PROTOTYPE = "/Library/EBoat"
-"""The E-Boat's parts: ``Body`` (hull, keel, mast), ``Boom`` (spar and sail) and ``Rudder`` (blade)."""
+"""A ``class`` prim (not drawn) holding the geometry that boats and instancers reference: ``/Library/<vessel>``,
+one Xform per part (``ocean_warp.usd.vessel_prims``)."""
 OCEAN_REST = "/Library/OceanRest"
 """With a looping ocean: the ocean mesh at the first frame (topology, points, extent, colours), which the
 ocean references, so that its attributes have a value outside the value clips (at the default time); the
@@ -48,6 +47,8 @@ clips, a stronger opinion, give the animation."""
 
 BOAT_COUNT_ATTRIBUTE = "oceanWarp:boatCount"
 """int on :data:`FLEET`: the number of boats recorded."""
+BOAT_ORIGINS_ATTRIBUTE = "oceanWarp:boatOrigins"
+"""bool on the point instancer (of a fixed part) whose instances stand at the boats' origins."""
 WIND_DIRECTION_ATTRIBUTE = "oceanWarp:windDirection"
 """float on :data:`WIND`: the direction the wind blows towards [rad], from +x counter-clockwise."""
 WIND_SPEED_ATTRIBUTE = "oceanWarp:windSpeed"

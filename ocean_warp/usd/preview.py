@@ -2,8 +2,7 @@
 
 Everything is read back from the stage file (not from the simulation), so the picture shows what was
 written: the ocean mesh seen from above and coloured by height, each boat's parts as filled outlines
-(hull, keel, boom and sail, rudder, from both layouts: one prim per boat or point instancers) and its path
-over the whole stage, the
+(from both layouts: one prim per boat or point instancers) and its path over the whole stage, the
 scene's objects under ``/World/Objects`` (buoys, piles: their outlines from above, in their colours), the
 waypoints and the path through them, and the wind's direction.
 """
@@ -20,7 +19,8 @@ from matplotlib.figure import Figure
 from pxr import Usd, UsdGeom
 
 from ..atomic_files import atomic_output
-from .paths import FLEET, OBJECTS, OCEAN, ROUTE_PATH, WAYPOINTS, WIND, WIND_DIRECTION_ATTRIBUTE, WIND_SPEED_ATTRIBUTE
+from .paths import (BOAT_ORIGINS_ATTRIBUTE, FLEET, OBJECTS, OCEAN, ROUTE_PATH, WAYPOINTS, WIND,
+                    WIND_DIRECTION_ATTRIBUTE, WIND_SPEED_ATTRIBUTE)
 
 __all__ = ["render_preview", "spread_time_code", "boat_tracks", "MAX_OUTLINED_BOATS"]
 
@@ -98,7 +98,8 @@ def _boat_centres(stage, time_code, cache: UsdGeom.XformCache) -> np.ndarray:
     for child in fleet.GetChildren() if fleet else []:
         if child.IsA(UsdGeom.PointInstancer):
             positions = UsdGeom.PointInstancer(child).GetPositionsAttr().Get(time_code)
-            if child.GetName() == "Bodies" and positions is not None:
+            marked = child.GetAttribute(BOAT_ORIGINS_ATTRIBUTE)
+            if marked and marked.Get() and positions is not None:
                 centres.append(_transform(np.array(positions, dtype=np.float64), cache.GetLocalToWorldTransform(child))
                                [:, :2])
         elif child.IsA(UsdGeom.Xformable):
@@ -158,7 +159,8 @@ def _boat_shapes(stage, time_code, cache: UsdGeom.XformCache):
             to_world = cache.GetLocalToWorldTransform(child)
             for target in instancer.GetPrototypesRel().GetTargets():
                 prototype = stage.GetPrimAtPath(target)
-                above = cache.GetLocalToWorldTransform(prototype.GetParent()).GetInverse()
+                # The instances' transforms include the prototype's own (USD's IncludeProtoXform).
+                above = cache.GetLocalToWorldTransform(prototype).GetInverse()
                 for mesh in _meshes_below(prototype):
                     local = _transform(mesh_points(mesh), cache.GetLocalToWorldTransform(mesh.GetPrim()) * above)
                     color = _mesh_color(mesh, time_code)

@@ -1,18 +1,19 @@
-"""Record a simulation into a USD stage while it runs: the ocean surface, the boats with their boom and
-rudder, the route and the wind; and write one seamless loop of an ocean on its own.
+"""Record a simulation into a USD stage while it runs: the ocean surface, the boats of any vessel with their
+moving parts (``ocean_warp.vessel``), the route and the wind; and write one seamless loop of an ocean on its own.
 
 Example::
 
-    from ocean_warp.usd import OceanDrawing, RouteDrawing, StageRecorder, record_eboat
+    from ocean_warp.usd import OceanDrawing, RouteDrawing, StageRecorder, record_vessel
 
-    sim = EBoatSimulator(config, 16, device="cuda:0")
+    vessel = EBoatVessel(config)                         # any ocean_warp.vessel.Vessel
+    sim = vessel.simulator(16, device="cuda:0")
     every = 4                                            # record every 4th step: 5 frames/s at dt 0.05 s
-    with StageRecorder.for_eboat("out/run.usdc", sim, fps=1 / (every * sim.config.dt),
-                                 ocean=OceanDrawing(sim.ocean, margin=30.0),
-                                 route=RouteDrawing(waypoints)) as recorder:
+    with StageRecorder.for_vessel("out/run.usdc", vessel, sim, fps=1 / (every * sim.config.dt),
+                                  ocean=OceanDrawing(sim.ocean, margin=30.0),
+                                  route=RouteDrawing(waypoints)) as recorder:
         for step in range(2400):
             if step % every == 0:
-                record_eboat(recorder, sim)
+                record_vessel(recorder, sim)
             sim.step()
     # out/run.usdc appears only here, complete.
 
@@ -34,20 +35,19 @@ from pxr import Sdf, Usd
 from ..ocean import Ocean
 from ..perception.scene import SceneObject
 from ..validation import require_int_in_range, require_positive
-from ..eboat.parts import eboat_parts
-from .boat_prototype import define_boat_prototype
-from .fleet_prims import InstancedFleetWriter, PrimFleetWriter
+from ..vessel import part_scaling
 from .markers import define_route, define_wind_arrow
 from .ocean_mesh import OceanLattice, OceanMeshWriter, check_extent, define_referenced_ocean, ocean_fields_at
 from .playback import TIME_CODES_PER_SECOND
-from .paths import BOAT_PROTOTYPE, LIBRARY, OCEAN, OCEAN_REST
+from .paths import LIBRARY, OCEAN, OCEAN_REST
 from .stage_file import StageFile
 from .scene_prims import LidarPointsWriter, ObjectsWriter
 from .stage_options import FleetDrawing, OceanDrawing, RouteDrawing, WindArrow, _require_loop
+from .vessel_instancers import InstancedVesselWriter
 from .vessel_prims import VesselFleetWriter, define_vessel_prototype, vessel_prototype_path
 from .view import define_camera, define_lights
 
-__all__ = ["StageRecorder", "record_eboat", "record_vessel", "write_ocean_loop", "INSTANCING_THRESHOLD",
+__all__ = ["StageRecorder", "record_vessel", "write_ocean_loop", "INSTANCING_THRESHOLD",
            "TIME_CODES_PER_SECOND", "loop_path_for"]
 
 INSTANCING_THRESHOLD = 64
@@ -128,6 +128,20 @@ def _require_group(owner: str, name: str, value, group: type, example: str, *, o
     raise ValueError(f"{owner}.{name} must be {allowed} (e.g. {name}={example}), got {type(value).__name__}")
 
 
+def _rows(owner: str, name: str, value, shape: tuple) -> np.ndarray:
+    """``value`` (numpy, a list or a torch tensor) as a finite float64 array of ``shape``, else ValueError."""
+    if value is None:
+        raise ValueError(f"{owner}: {name} is required (the recorder has {shape[0]} boats)")
+    if hasattr(value, "detach"):
+        value = value.detach().cpu().numpy()
+    array = np.asarray(value, dtype=np.float64)
+    if array.shape != shape:
+        raise ValueError(f"{owner}: {name} must have shape {shape}, got {array.shape}")
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{owner}: {name} holds NaN or infinite values")
+    return array
+
+
 class StageRecorder:
     """Writes a USD stage frame by frame while a simulation runs (call :meth:`record` every k-th step).
 
@@ -144,7 +158,7 @@ class StageRecorder:
     - ``ocean``: an :class:`~ocean_warp.usd.stage_options.OceanDrawing`, the ocean to draw and how (mesh
       resolution, extent and margin, normals, colours, a seamless loop); None: no ocean.
     - ``fleet``: a :class:`~ocean_warp.usd.stage_options.FleetDrawing`, the number of boats (default
-      none), their layout (prims or point instancers) and dimensions.
+      none), the vessel they are and their layout (prims or point instancers).
     - ``route``: a :class:`~ocean_warp.usd.stage_options.RouteDrawing`, the waypoints drawn as buoys and
       the path from the start through them; None: no route.
     - ``wind``: a :class:`~ocean_warp.usd.stage_options.WindArrow`, the wind's direction and speed and
@@ -215,16 +229,15 @@ class StageRecorder:
             stage.CreateClassPrim(LIBRARY)
             self._fleet = None
             self.vessel = fleet.vessel
-            if self.boats and self.vessel is not None:
-                self.instanced = False
+            self.scaling = part_scaling(self.vessel) if self.vessel is not None else None
+            """The vessel's parts drawn at a size of each boat's own (``PartScaling``), None: none."""
+            self._joints: tuple[tuple[str, int], ...] = ()
+            if self.boats:
                 parts = self.vessel.parts()
+                self._joints = tuple((part.joint, part.joint_column) for part in parts if part.joint is not None)
                 prototype = define_vessel_prototype(stage, vessel_prototype_path(self.vessel), parts)
-                self._fleet = VesselFleetWriter(stage, self.boats, prototype, parts)
-            elif self.boats:
-                parts = eboat_parts(fleet.boat)
-                prototype = define_boat_prototype(stage, BOAT_PROTOTYPE, parts)
-                layout = InstancedFleetWriter if self.instanced else PrimFleetWriter
-                self._fleet = layout(stage, self.boats, prototype, parts)
+                layout = InstancedVesselWriter if self.instanced else VesselFleetWriter
+                self._fleet = layout(stage, self.boats, prototype, parts, self.scaling)
             if self.route is not None:
                 define_route(stage, self.route, labels=self.route_labels, start=self.route_start, path=route.path)
             self._objects = ObjectsWriter(stage, objects, labels=object_labels) if objects else None
@@ -241,33 +254,22 @@ class StageRecorder:
 
     # --- construction helpers -------------------------------------------------------------------
     @classmethod
-    def for_eboat(cls, path, simulator, *, fps: float, **options) -> "StageRecorder":
-        """A recorder for an ``EBoatSimulator``: ``ocean=OceanDrawing(simulator.ocean)``,
-        ``fleet=FleetDrawing(simulator.count, boat=simulator.config.boat)`` and ``wind=WindArrow(...)`` with
-        the mean wind direction and speed of its first environment, unless ``options`` give them (any
-        keyword of the constructor: ``ocean=OceanDrawing(simulator.ocean, loop=True)``, ``route=...``,
-        ``wind=None`` for no arrow, ...)."""
-        if "ocean" not in options:
-            options["ocean"] = OceanDrawing(simulator.ocean)
-        if "fleet" not in options:
-            options["fleet"] = FleetDrawing(simulator.count, boat=simulator.config.boat)
-        if "wind" not in options:
-            options["wind"] = WindArrow(float(simulator.state.wind_mean_direction.numpy()[0]),
-                                        speed=float(simulator.state.wind_mean_speed.numpy()[0]))
-        return cls(path, fps=fps, **options)
-
-    @classmethod
     def for_vessel(cls, path, vessel, simulator, *, fps: float, **options) -> "StageRecorder":
         """A recorder for ``simulator``, a simulator of ``vessel`` (any ``ocean_warp.vessel.Vessel``):
         ``ocean=OceanDrawing(simulator.ocean)``, ``fleet=FleetDrawing(simulator.count, vessel=vessel)`` and a
-        ``WindArrow`` of its first boat's mean wind, unless ``options`` give them; frames with
-        :func:`record_vessel`."""
+        ``WindArrow`` of its first boat's mean wind, unless ``options`` give them (``fleet=FleetDrawing(count,
+        vessel=vessel, instanced=True)``, ``wind=None``...); frames with :func:`record_vessel`."""
         options.setdefault("ocean", OceanDrawing(simulator.ocean))
         options.setdefault("fleet", FleetDrawing(simulator.count, vessel=vessel))
         if "wind" not in options:
             options["wind"] = WindArrow(float(simulator.state.wind_mean_direction.numpy()[0]),
                                         speed=float(simulator.state.wind_mean_speed.numpy()[0]))
         return cls(path, fps=fps, **options)
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """The state arrays the vessel's parts turn with (:meth:`record`'s ``joints``), each once."""
+        return tuple(dict.fromkeys(name for name, _ in self._joints))
 
     @property
     def path(self) -> str:
@@ -287,19 +289,17 @@ class StageRecorder:
         nearest = round(code)
         return float(nearest) if abs(code - nearest) < 1e-6 else code
 
-    def record(self, time_s: float, positions=None, orientations=None, boom_angles=None, rudder_angles=None, *,
-               object_poses=None, lidar_points=None, sail_scales=None, joints=None) -> None:
+    def record(self, time_s: float, positions=None, orientations=None, *, joints=None, levels=None,
+               object_poses=None, lidar_points=None) -> None:
         """Add the frame at time ``time_s`` [s] (later than the last one): the boats' positions (N, 3) [m],
-        orientations (N, 4) (x, y, z, w, body -> world; normalised here), boom and rudder angles (N,) [rad]
-        (positive to port; None: 0), each sail's linear scale about its tack ``sail_scales`` (N,) in (0, 1]
-        (its reef level's, ``EBoatConfig.reef_scales``; None: 1, the full sail), and the ocean evaluated at
-        ``time_s``. Boat arguments may be numpy
-        arrays, lists or torch tensors. With ``objects``: ``object_poses`` = (positions (M, 3) [m],
-        orientations (M, 4)) of every object (``Scene.view.object_position`` / ``object_orientation``), of
-        which the floating ones are sampled (None: they stay where they were). With ``lidar``:
-        ``lidar_points`` (P, 3) [m], the frame's returns (NaN rows: no return). With ``FleetDrawing(vessel=...)``:
-        ``joints`` instead of the E-Boat's angles and scales, each jointed part's state array by name ((N,) or
-        (N, C) [rad], ``{"thruster_angle": ...}``; :func:`record_vessel` reads them from a simulator)."""
+        orientations (N, 4) (x, y, z, w, body -> world; normalised here), ``joints``, the state array of each
+        joint the vessel's parts turn with by name ((N,) or (N, C) [rad], ``{"boom_angle": ...}``), ``levels``
+        (N,) each boat's level of the vessel's ``PartScaling`` (the E-Boat's reef; None: level 0), and the ocean
+        evaluated at ``time_s``. Boat arguments may be numpy arrays, lists or torch tensors (:func:`record_vessel`
+        reads them from a simulator). With ``objects``: ``object_poses`` = (positions (M, 3) [m], orientations
+        (M, 4)) of every object (``Scene.view.object_position`` / ``object_orientation``), of which the floating
+        ones are sampled (None: they stay where they were). With ``lidar``: ``lidar_points`` (P, 3) [m], the
+        frame's returns (NaN rows: no return)."""
         owner = "StageRecorder.record"
         if self._file.closed:
             raise ValueError(f"{owner}: the recorder is closed")
@@ -310,17 +310,9 @@ class StageRecorder:
         if self.last_time_code is not None and code <= self.last_time_code:
             raise ValueError(f"{owner}: time_s must increase from frame to frame, got {time_s!r} s (time code {code}) "
                              f"after time code {self.last_time_code}")
-        if self.vessel is not None:
-            if any(value is not None for value in (boom_angles, rudder_angles, sail_scales)):
-                raise ValueError(f"{owner}: the {self.vessel.name}'s parts turn with joints=..., not boom_angles, "
-                                 "rudder_angles or sail_scales")
-            boats = self._boat_frame(owner, positions, orientations, None, None)
-            boats = boats and (boats[0], boats[1], self._joint_frame(owner, joints))
-        else:
-            if joints is not None:
-                raise ValueError(f"{owner}: joints are for a FleetDrawing(vessel=...); the E-Boat's are boom_angles "
-                                 "and rudder_angles")
-            boats = self._boat_frame(owner, positions, orientations, boom_angles, rudder_angles, sail_scales)
+        boats = self._boat_frame(owner, positions, orientations)
+        if boats is not None:
+            boats += (self._joint_frame(owner, joints), self._scale_frame(owner, levels))
         try:
             if self.first_time_code is None:
                 self._start(boats[0] if boats is not None else None, code)
@@ -343,46 +335,25 @@ class StageRecorder:
         self.last_time_code = code
         self.frames += 1
 
-    def _boat_frame(self, owner, positions, orientations, boom_angles, rudder_angles, sail_scales=None):
-        """The boat arguments as float64 arrays, checked; None without boats."""
+    def _boat_frame(self, owner, positions, orientations):
+        """(positions, unit orientations) as float64 arrays, checked; None without boats."""
         n = self.boats
         if n == 0:
             if positions is not None and len(np.asarray(positions)):
                 raise ValueError(f"{owner}: positions given, but the recorder was made for 0 boats")
             return None
-
-        def rows(name, value, width, default=None):
-            if value is None:
-                if default is None:
-                    raise ValueError(f"{owner}: {name} is required (the recorder has {n} boats)")
-                return np.full((n,) if width is None else (n, width), default, dtype=np.float64)
-            if hasattr(value, "detach"):
-                value = value.detach().cpu().numpy()
-            array = np.asarray(value, dtype=np.float64)
-            shape = (n,) if width is None else (n, width)
-            if array.shape != shape:
-                raise ValueError(f"{owner}: {name} must have shape {shape}, got {array.shape}")
-            if not np.all(np.isfinite(array)):
-                raise ValueError(f"{owner}: {name} holds NaN or infinite values")
-            return array
-
-        where = rows("positions", positions, 3)
-        rotation = rows("orientations", orientations, 4)
+        where = _rows(owner, "positions", positions, (n, 3))
+        rotation = _rows(owner, "orientations", orientations, (n, 4))
         norm = np.linalg.norm(rotation, axis=1, keepdims=True)
         if np.any(norm < 1e-6):
             raise ValueError(f"{owner}: orientations must be non-zero quaternions (x, y, z, w)")
-        scales = rows("sail_scales", sail_scales, None, 1.0)
-        if np.any(scales <= 0.0) or np.any(scales > 1.0):
-            raise ValueError(f"{owner}: sail_scales must lie in (0, 1] (a reef's linear factor), got "
-                             f"{scales.min()} to {scales.max()}")
-        return (where, rotation / norm, rows("boom_angles", boom_angles, None, 0.0),
-                rows("rudder_angles", rudder_angles, None, 0.0), scales)
+        return where, rotation / norm
 
     def _joint_frame(self, owner, joints) -> dict:
         """The joint arrays the vessel's parts turn with, as float64, checked."""
         joints = dict(joints or {})
         frame = {}
-        for name, column in self._fleet.joints:
+        for name, column in self._joints:
             value = joints.get(name)
             if value is None:
                 raise ValueError(f"{owner}: joints[{name!r}] is required (the {self.vessel.name}'s parts turn with it)")
@@ -395,7 +366,24 @@ class StageRecorder:
             if not np.all(np.isfinite(array)):
                 raise ValueError(f"{owner}: joints[{name!r}] holds NaN or infinite values")
             frame[name] = array
+        unknown = sorted(set(joints) - set(frame))
+        if unknown:
+            raise ValueError(f"{owner}: the {self.vessel.name}'s parts turn with no joint {unknown[0]!r}")
         return frame
+
+    def _scale_frame(self, owner, levels) -> np.ndarray | None:
+        """Each boat's linear factor on the vessel's scaled parts (``levels`` through ``PartScaling.scales``)."""
+        if levels is None:
+            return None if self.scaling is None else np.full(self.boats, self.scaling.scales[0])
+        if self.scaling is None:
+            raise ValueError(f"{owner}: levels given, but the {self.vessel.name} draws no part at a size of each "
+                             "boat's own")
+        array = _rows(owner, "levels", levels, (self.boats,))
+        count = len(self.scaling.scales)
+        if np.any(array != np.round(array)) or np.any(array < 0) or np.any(array >= count):
+            raise ValueError(f"{owner}: levels must be whole numbers in [0, {count}) (the {self.vessel.name}'s "
+                             f"{self.scaling.level}), got {array.min()} to {array.max()}")
+        return np.asarray(self.scaling.scales, dtype=np.float64)[array.astype(np.int64)]
 
     def _start(self, positions: np.ndarray | None, code: float) -> None:
         """At the first frame: fix the ocean's extent and lattice, and the wind arrow's place."""
@@ -551,24 +539,14 @@ class StageRecorder:
             self.close()
 
 
-def record_eboat(recorder: StageRecorder, simulator, time_s: float | None = None) -> None:
-    """Add the current state of an ``EBoatSimulator`` to ``recorder`` as a frame at ``time_s`` [s] (default:
-    the simulator's time): positions, orientations, boom and rudder angles and each sail's reef, one host copy
-    of each."""
-    state = simulator.state
-    recorder.record(simulator.time if time_s is None else time_s, state.position.numpy(), state.orientation.numpy(),
-                    state.boom_angle.numpy(), state.rudder_angle.numpy(), sail_scales=simulator.sail_scales())
-
-
 def record_vessel(recorder: StageRecorder, simulator, time_s: float | None = None) -> None:
     """Add the current state of ``simulator`` (of the recorder's ``FleetDrawing.vessel``) as a frame at ``time_s``
-    [s] (default: the simulator's clock, ``state.time``): positions, orientations and every joint state array
-    its vessel's parts turn with, one host copy of each."""
+    [s] (default: the simulator's clock, ``state.time``): positions, orientations, every joint state array its
+    vessel's parts turn with and the level array of its ``PartScaling``, one host copy of each."""
     if recorder.vessel is None:
-        raise ValueError("record_vessel: the recorder draws E-Boats (FleetDrawing without a vessel); use "
-                         "record_eboat")
+        raise ValueError("record_vessel: the recorder draws no boats (FleetDrawing without a vessel)")
     state = simulator.state
-    names = {part.joint for part in recorder.vessel.parts() if part.joint is not None}
-    joints = {name: getattr(state, name).numpy() for name in names}
+    joints = {name: getattr(state, name).numpy() for name in recorder.joint_names}
+    levels = getattr(state, recorder.scaling.level).numpy() if recorder.scaling is not None else None
     time_s = float(state.time.numpy()[0]) if time_s is None else time_s
-    recorder.record(time_s, state.position.numpy(), state.orientation.numpy(), joints=joints)
+    recorder.record(time_s, state.position.numpy(), state.orientation.numpy(), joints=joints, levels=levels)

@@ -8,7 +8,7 @@ or ``int``, coordinates as tuples of floats.
 Example::
 
     StageRecorder("out/run.usdc", fps=5.0, ocean=OceanDrawing(ocean, resolution=96, loop=True),
-                  fleet=FleetDrawing(16, boat=config.boat), route=RouteDrawing(waypoints, labels="BCDACA"),
+                  fleet=FleetDrawing(16, vessel=vessel), route=RouteDrawing(waypoints, labels="BCDACA"),
                   wind=WindArrow(math.pi / 2, speed=6.0))
 """
 
@@ -19,7 +19,6 @@ from typing import Any
 
 import numpy as np
 
-from ..eboat.eboat import EBoatConfig
 from ..ocean import Ocean
 from ..validation import require_finite, require_int_in_range, require_non_negative
 from ..vessel import require_vessel
@@ -107,33 +106,29 @@ class OceanDrawing:
 
 @dataclasses.dataclass(frozen=True)
 class FleetDrawing:
-    """The boats a stage shows: E-Boats with their boom and rudder, posed at every recorded frame."""
+    """The boats a stage shows: ``count`` boats of ``vessel``, each part posed and turned at every recorded
+    frame."""
 
     count: int = 0
     """Number of boats (0: none)."""
     instanced: bool | None = None
-    """One point instancer per moving part (True) or one prim per boat (False); None picks instancers
-    above :data:`~ocean_warp.usd.INSTANCING_THRESHOLD` boats."""
-    boat: EBoatConfig | None = None
-    """The :class:`~ocean_warp.eboat.eboat.EBoatConfig` whose dimensions the boats are drawn with (None:
-    the default, V-C)."""
+    """One point instancer per part (True, ``ocean_warp.usd.vessel_instancers``) or one prim per boat (False,
+    ``ocean_warp.usd.vessel_prims``); None picks instancers above :data:`~ocean_warp.usd.INSTANCING_THRESHOLD`
+    boats."""
     vessel: Any = None
-    """Any :class:`~ocean_warp.vessel.Vessel` (the WAM-V...), drawn one prim per boat with one child per part
-    (``ocean_warp.usd.vessel_prims``; ``instanced`` and ``boat`` must then be left None); None: E-Boats of
-    ``boat``."""
+    """The :class:`~ocean_warp.vessel.Vessel` the boats are (``EBoatVessel(config)``, ``Wamv()``...), drawn
+    with its ``parts()`` and its ``part_scaling()``; needed when ``count`` > 0."""
 
     def __post_init__(self):
         owner = type(self).__name__
         _set(self, "count", require_int_in_range(owner, "count", self.count, 0, 2**24))
         if self.instanced is not None and not isinstance(self.instanced, bool):
             raise ValueError(f"{owner}.instanced must be True, False or None, got {self.instanced!r}")
-        if self.boat is not None and not isinstance(self.boat, EBoatConfig):
-            raise ValueError(f"{owner}.boat must be an EBoatConfig or None, got {type(self.boat).__name__}")
         if self.vessel is not None:
             require_vessel(f"{owner}.vessel", self.vessel)
-            if self.instanced or self.boat is not None:
-                raise ValueError(f"{owner}: a vessel is drawn one prim per boat from its own parts; leave instanced "
-                                 f"and boat None, got instanced={self.instanced!r}, boat={self.boat!r}")
+        elif self.count:
+            raise ValueError(f"{owner}.vessel: {self.count} boats need the vessel they are (its parts are what the "
+                             "stage draws), e.g. FleetDrawing(count, vessel=EBoatVessel(config))")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -1,11 +1,14 @@
-"""Any vessel's boats in a stage (``ocean_warp.vessel``): one prim per boat, one child per part of
-``Vessel.parts()``, animated one frame at a time.
+"""Any vessel's boats in a stage (``ocean_warp.vessel``), one prim per boat, one child per part of
+``Vessel.parts()``, animated one frame at a time (the other layout, point instancers for large fleets:
+``ocean_warp.usd.vessel_instancers``).
 
 The vessel's parts are authored once under a ``class`` prim (``/Library/<vessel>/<part>/Mesh``, each with the
 look of its material) and every boat's part references its own: ``Boat_0000/<part>``. A boat's Xform carries
 its time-sampled translate and orient (the pose); a jointed part carries its pivot as a translate and minus its
-joint's angle as a time-sampled rotateZ [deg] (``VesselPart``: it turns by -angle about its pivot's z). Parts a
-vessel scales per boat (``PartScaling``) are drawn at their full size here.
+joint's angle as a time-sampled rotateZ [deg] (``VesselPart``: it turns by -angle about its pivot's z). A part
+the vessel draws at a size of each boat's own (``PartScaling``: the E-Boat's sail at its reef) carries a
+time-sampled scale about its origin (translate to the origin, scale, translate back). Each boat's hull parts
+(material ``hull``) have its colour of :data:`~ocean_warp.usd.materials.HULL_PALETTE`.
 
 Quaternions on the way in are Warp's (x, y, z, w), body (FLU) -> world (ENU).
 """
@@ -15,14 +18,14 @@ from __future__ import annotations
 import re
 
 import numpy as np
-from pxr import Gf, Kind, Sdf, Usd, UsdGeom
+from pxr import Gf, Kind, Sdf, Usd, UsdGeom, Vt
 
 from .geometry import define_mesh
-from .materials import LOOKS_BY_NAME, bind_look, define_look
+from .materials import HULL_PALETTE, LOOKS_BY_NAME, Look, bind_look, define_look, hull_look_name
 from .paths import BOAT_COUNT_ATTRIBUTE, FLEET, LIBRARY, boat_path
 
 __all__ = ["MATERIAL_LOOKS", "prim_name", "vessel_prototype_path", "define_vessel_prototype", "VesselFleetWriter",
-           "define_fleet_prim", "define_boat_prim", "set_boat_pose"]
+           "define_fleet_prim", "define_boat_prim", "set_boat_pose", "part_angles"]
 
 MATERIAL_LOOKS = {"hull": "Hull", "sail": "Sail", "foil": "Foil", "metal": "Spar", "dark": "Foil"}
 """The look (:data:`~ocean_warp.usd.materials.LOOKS_BY_NAME`) of each ``VesselPart.material`` (others: Hull)."""
@@ -82,37 +85,70 @@ def set_boat_pose(ops: tuple, position, orientation, time_code: float) -> None:
     orient.Set(Gf.Quatf(qw, qx, qy, qz), time_code)
 
 
+def part_angles(parts, joints: dict, count: int) -> dict[str, np.ndarray]:
+    """Each jointed part's (``count``,) angle [rad] by part name, read from ``joints``, its state array by name
+    ((N,) or (N, C): column ``joint_column``)."""
+    angles = {}
+    for part in parts:
+        if part.joint is not None:
+            values = np.asarray(joints[part.joint], dtype=np.float64)
+            angles[part.name] = (values if values.ndim == 1 else values[:, part.joint_column]).reshape(count)
+    return angles
+
+
+def _paint_hull(stage, mesh_path: str, index: int) -> None:
+    """Give the mesh at ``mesh_path`` (a boat's hull part) colour ``index`` of HULL_PALETTE: an override of the
+    prototype's material binding and displayColor (entry 0 is the prototype's)."""
+    if index % len(HULL_PALETTE) == 0:
+        return
+    color = HULL_PALETTE[index % len(HULL_PALETTE)]
+    material = define_look(stage, hull_look_name(index), Look(color, roughness=LOOKS_BY_NAME["Hull"].roughness))
+    hull = stage.OverridePrim(mesh_path)
+    UsdGeom.Gprim(hull).CreateDisplayColorPrimvar(UsdGeom.Tokens.constant).Set(Vt.Vec3fArray([Gf.Vec3f(*color)]))
+    bind_look(hull, material)
+
+
 class VesselFleetWriter:
     """One Xform per boat under :data:`~ocean_warp.usd.paths.FLEET` (``component`` models in an ``assembly``),
-    each with one child per part referencing ``prototype`` (part name -> path)."""
+    each with one child per part referencing ``prototype`` (part name -> path); the parts of ``scaling`` (a
+    ``PartScaling`` or None) are scaled per boat."""
 
-    def __init__(self, stage, count: int, prototype: dict[str, str], parts):
+    def __init__(self, stage, count: int, prototype: dict[str, str], parts, scaling=None):
         define_fleet_prim(stage, count)
         self.parts = tuple(parts)
-        self.joints = tuple((part.joint, part.joint_column) for part in self.parts if part.joint is not None)
-        """(state array name, column) of each jointed part, in the order of the parts."""
-        self._pose, self._turns = [], []
+        self.count = count
+        scaled = set(scaling.parts) if scaling is not None else set()
+        self._pose, self._turns, self._scales = [], [], []
         for i in range(count):
             self._pose.append(define_boat_prim(stage, i))
-            turns = []
+            turns, scales = {}, []
             for part in self.parts:
-                prim = UsdGeom.Xform.Define(stage, f"{boat_path(i)}/{prim_name(part.name)}")
+                path = f"{boat_path(i)}/{prim_name(part.name)}"
+                prim = UsdGeom.Xform.Define(stage, path)
                 prim.GetPrim().GetReferences().AddInternalReference(prototype[part.name])
                 if part.joint is not None:
                     prim.AddTranslateOp().Set(Gf.Vec3d(*map(float, part.pivot)))
-                    turns.append(prim.AddRotateZOp())
+                    turns[part.name] = prim.AddRotateZOp()
+                if part.name in scaled:
+                    origin = prim.AddTranslateOp(opSuffix="scaleOrigin")
+                    origin.Set(Gf.Vec3d(*map(float, scaling.origin)))
+                    scales.append(prim.AddScaleOp())
+                    prim.AddTranslateOp(opSuffix="scaleOrigin", isInverseOp=True)
+                if part.material == "hull":
+                    _paint_hull(stage, f"{path}/Mesh", i)
             self._turns.append(turns)
+            self._scales.append(scales)
 
-    def write(self, time_code: float, positions, orientations, joints: dict) -> None:
-        """One frame: positions (N, 3) [m], unit orientations (N, 4) (x, y, z, w) and ``joints``, each jointed
-        part's state array by name ((N,) or (N, C) [rad], positive to port)."""
-        angles = []
-        for name, column in self.joints:
-            values = np.asarray(joints[name], dtype=np.float64)
-            angles.append(values if values.ndim == 1 else values[:, column])
-        degrees = -np.degrees(np.column_stack(angles)) if angles else np.zeros((len(self._pose), 0))
+    def write(self, time_code: float, positions, orientations, joints: dict, scales=None) -> None:
+        """One frame: positions (N, 3) [m], unit orientations (N, 4) (x, y, z, w), ``joints``, each jointed
+        part's state array by name ((N,) or (N, C) [rad], positive to port), and ``scales`` (N,), each boat's
+        linear factor on its scaled parts (None: 1)."""
+        degrees = {name: -np.degrees(angle) for name, angle in part_angles(self.parts, joints, self.count).items()}
+        scales = np.ones(self.count) if scales is None else np.asarray(scales, dtype=np.float64)
         with Sdf.ChangeBlock():
             for i, ops in enumerate(self._pose):
                 set_boat_pose(ops, positions[i], orientations[i], time_code)
-                for op, value in zip(self._turns[i], degrees[i]):
-                    op.Set(float(value), time_code)
+                for name, op in self._turns[i].items():
+                    op.Set(float(degrees[name][i]), time_code)
+                for op in self._scales[i]:
+                    op.Set(Gf.Vec3f(*(3 * (float(scales[i]),))), time_code)

@@ -8,7 +8,6 @@ import math
 import numpy as np
 import pytest
 import torch
-import warp as wp
 
 import ocean_warp as ow
 from ocean_warp.contact import Contact, ContactConfig, boat_capsule
@@ -20,7 +19,8 @@ from ocean_warp.torch_streams import ordered_with_torch
 from tests.hull_setups import rotation_matrix
 
 HULL = eboat_parts(hull_detail=1).hull.points
-EBOAT_SHAPE = EBoatVessel().collision_shape()
+EBOAT = EBoatVessel()
+EBOAT_SHAPE = EBOAT.collision_shape()
 
 
 def still_sim(device, count, positions, headings):
@@ -49,7 +49,7 @@ def test_overlap_and_force_against_hand_computation(device, rng):
     center = np.array([along, radius + sphere_radius - depth, stern[2]])
     sim = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
     scene = Scene.for_simulator(sim, objects=[SceneObject("sphere", tuple(center), radius=sphere_radius)],
-                                water_visible=False)
+                                vessel=EBOAT, water_visible=False)
     stiffness = float(rng.uniform(1e3, 1e5))
     contact = Contact(scene, ContactConfig(stiffness=stiffness, damping=0.0), shape=EBOAT_SHAPE)
     sim.fleet.forces.model_wrench.zero_()
@@ -100,7 +100,7 @@ def test_a_boat_driven_into_a_pile_stops_outside_it(device, rng):
     pile_x = float(bow[0] + radius + rng.uniform(4.0, 6.0) + pile_radius)
     pile = SceneObject.pillar((pile_x, 0.0), radius=pile_radius, height=4.0)
     stopped = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
-    stopping = Contact(Scene.for_simulator(stopped, objects=[pile]), shape=EBOAT_SHAPE)
+    stopping = Contact(Scene.for_simulator(stopped, objects=[pile], vessel=EBOAT), shape=EBOAT_SHAPE)
     positions, orientations = sail_with_contact(stopped, stopping, 400, 60.0)
     clearance = horizontal_distance_to_segment(np.array([pile_x, 0.0]),
                                                capsule_axis(positions[:, 0], orientations[:, 0], stern, bow))
@@ -109,7 +109,8 @@ def test_a_boat_driven_into_a_pile_stops_outside_it(device, rng):
     assert clearance.min() > touching - 0.06, "and does not go into it"
     assert stopped.state.status.numpy()[0] & ow.BoatStatus.COLLIDED
     free = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
-    flagging = Contact(Scene.for_simulator(free, objects=[pile]), ContactConfig(stiffness=0.0, damping=0.0),
+    flagging = Contact(Scene.for_simulator(free, objects=[pile], vessel=EBOAT),
+                       ContactConfig(stiffness=0.0, damping=0.0),
                        shape=EBOAT_SHAPE)
     through, _ = sail_with_contact(free, flagging, 600, 60.0)
     assert through[-1, 0, 0] + stern[0] - radius > pile_x + pile_radius, "without a force it passes through"
@@ -122,8 +123,7 @@ def test_two_boats_meeting_head_on_are_flagged_and_kept_apart(device, rng):
     stern, bow, radius = boat_capsule(HULL)
     gap = float(rng.uniform(8.0, 10.0))
     sim = still_sim(device, 3, [[0.0, 0.0, 0.0], [gap, 0.0, 0.0], [gap / 2, 30.0, 0.0]], [0.0, math.pi, 0.0])
-    scene = Scene(sim.ocean, envs=2, boat_env=[0, 0, 1], boat_position=sim.state.position,
-                  boat_orientation=sim.state.orientation, boom_angle=sim.state.boom_angle, objects=[[], []])
+    scene = Scene.for_vessel(EBOAT, sim, [[], []], envs=2, boat_env=[0, 0, 1])
     positions, orientations = sail_with_contact(sim, Contact(scene, shape=EBOAT_SHAPE), 400, [60.0, 60.0, 60.0])
     first = capsule_axis(positions[:, 0], orientations[:, 0], stern, bow)
     second = capsule_axis(positions[:, 1], orientations[:, 1], stern, bow)
@@ -164,7 +164,7 @@ def test_a_boat_driven_into_a_mesh_object_stops_at_its_face(device, rng, tmp_pat
     face_x = float(bow[0] + radius + rng.uniform(3.0, 5.0))
     quay = SceneObject.from_file(tmp_path / "quay.stl", (face_x + 1.0, 0.0, 0.5))
     sim = still_sim(device, 1, [0.0, 0.0, 0.0], 0.0)
-    contact = Contact(Scene.for_simulator(sim, objects=[quay]), shape=EBOAT_SHAPE)
+    contact = Contact(Scene.for_simulator(sim, objects=[quay], vessel=EBOAT), shape=EBOAT_SHAPE)
     positions, orientations = sail_with_contact(sim, contact, 300, 60.0)
     front = capsule_axis(positions[:, 0], orientations[:, 0], stern, bow)[:, 1, 0] + radius
     assert front.max() > face_x - 0.01, "it reaches the quay"
@@ -190,9 +190,7 @@ def test_each_vessel_collides_as_its_own_capsule(device, rng):
     for name, vessel in (("wamv", Wamv()), ("eboat", EBoatVessel())):
         sim = vessel.simulator(1, device=device)
         sim.reset(position=[0.0, 0.0, 0.0], heading=0.0)
-        scene = Scene(sim.ocean, envs=1, boat_env=[0], boat_position=sim.state.position,
-                      boat_orientation=sim.state.orientation, boom_angle=wp.zeros(1, dtype=float, device=sim.device),
-                      objects=[[sphere]], water_visible=False)
+        scene = Scene.for_vessel(vessel, sim, [[sphere]], envs=1, boat_env=[0], water_visible=False)
         contact = Contact(scene, ContactConfig(stiffness=0.0, damping=0.0), shape=vessel.collision_shape())
         contact.substep(sim.simulator)
         flagged[name] = bool(sim.state.status.numpy()[0] & ow.BoatStatus.COLLIDED)

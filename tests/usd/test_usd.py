@@ -17,9 +17,10 @@ pytest.importorskip("pxr", reason="USD tests need usd-core (pip install usd-core
 from pxr import Usd, UsdGeom  # noqa: E402
 
 import ocean_warp as ow  # noqa: E402
-from ocean_warp.eboat import EBoatSimulator, EBoatSimulatorConfig
+from ocean_warp.eboat import EBoatSimulatorConfig, EBoatVessel
 from ocean_warp.eboat.parts import eboat_parts
-from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, record_eboat,
+from ocean_warp.meshes import concatenate
+from ocean_warp.usd import (FleetDrawing, OceanDrawing, RouteDrawing, StageRecorder, WindArrow, record_vessel,
                             render_preview, validate_stage, write_ocean_loop)
 
 FPS = 5.0
@@ -32,7 +33,22 @@ TCPS = 24.0  # the stages' default time codes per second: time code = time [s] x
 BASE_Z = -0.094
 BOOM_PIVOT = np.array([0.59529 - 0.049, 0.0, 0.210586 - 0.153011 + 0.933 + BASE_Z])
 RUDDER_PIVOT = np.array([-1.08641, 0.0, 0.210586 + 0.0764342 + BASE_Z])
-INSTANCERS = {"Body": "Bodies", "Boom": "Booms", "Rudder": "Rudders"}
+EBOAT = EBoatVessel()
+
+
+def eboats(count, **options) -> FleetDrawing:
+    """``count`` E-Boats of V-C (the default config)."""
+    return FleetDrawing(count, vessel=EBOAT, **options)
+
+
+def joints(boom, rudder=None) -> dict:
+    """The E-Boat's joint arrays: boom and rudder angles [rad] (rudder None: amidships)."""
+    return {"boom_angle": boom, "rudder_angle": np.zeros(len(boom)) if rudder is None else rudder}
+
+
+def still(count) -> dict:
+    """Boom and rudder amidships on ``count`` boats."""
+    return joints(np.zeros(count))
 
 
 def small_sea(**overrides) -> ow.OceanConfig:
@@ -45,17 +61,18 @@ def sail(device, path, *, instanced, steps=24, ocean=None, loop=False):
     ``loop``), recorded every EVERY-th step; returns the stage path and, per recorded step, the simulator's
     time and host state."""
     config = EBoatSimulatorConfig(ocean=ocean or small_sea(), wind=ow.WindConfig(speed=6.0, direction=1.0))
-    sim = EBoatSimulator(config, 3, device=device)
+    vessel = EBoatVessel(config)
+    sim = vessel.simulator(3, device=device)
     sim.reset(position=[[0.0, 0.0, 0.05], [10.0, 5.0, 0.05], [-8.0, 12.0, 0.05]], heading=[0.0, 1.2, 2.5],
               sheet=0.8)
     sim.tensors.control.rudder[:] = sim.tensors.control.rudder.new_tensor([0.3, -0.4, 0.1])
     truth = []
     options = dict(ocean=OceanDrawing(sim.ocean, loop=True)) if loop else {}
-    with StageRecorder.for_eboat(path, sim, fps=FPS, fleet=FleetDrawing(3, instanced=instanced, boat=sim.config.boat),
-                                 route=RouteDrawing([[0, 0], [30, 10], [20, 40]]), **options) as recorder:
+    with StageRecorder.for_vessel(path, vessel, sim, fps=FPS, fleet=FleetDrawing(3, instanced=instanced, vessel=vessel),
+                                  route=RouteDrawing([[0, 0], [30, 10], [20, 40]]), **options) as recorder:
         for step in range(steps):
             if step % EVERY == 0:
-                record_eboat(recorder, sim)
+                record_vessel(recorder, sim)
                 state = sim.state
                 truth.append(dict(time=sim.time, position=state.position.numpy().copy(),
                                   orientation=state.orientation.numpy().copy(),
@@ -68,8 +85,8 @@ def part_transforms(stage, time_code, part):
     """World matrices (numpy 4x4, row-vector convention) of every boat's ``part`` ("Body", "Boom", "Rudder"),
     read with USD's own transform machinery from either layout."""
     fleet = stage.GetPrimAtPath("/World/Fleet")
-    instancer = stage.GetPrimAtPath(f"/World/Fleet/{INSTANCERS[part]}")
-    if instancer:
+    instancer = stage.GetPrimAtPath(f"/World/Fleet/{part}")
+    if instancer and instancer.IsA(UsdGeom.PointInstancer):
         matrices = UsdGeom.PointInstancer(instancer).ComputeInstanceTransformsAtTime(time_code, time_code)
         return [np.array(m) for m in matrices]
     cache = UsdGeom.XformCache(time_code)
@@ -132,11 +149,12 @@ def test_stage_validates_with_every_option(tmp_path):
     config = small_sea(loop_period=8.0)
     ocean = ow.Ocean(config, device="cpu")
     path = tmp_path / "scene.usda"
-    with StageRecorder(path, fps=10.0, ocean=OceanDrawing(ocean, normals=True), fleet=FleetDrawing(2, instanced=True),
+    with StageRecorder(path, fps=10.0, ocean=OceanDrawing(ocean, normals=True), fleet=eboats(2, instanced=True),
                        route=RouteDrawing(np.array([[0.0, 0.0], [15.0, 5.0]]), labels="AB"),
                        wind=WindArrow(0.5, speed=7.0)) as recorder:
         for k in range(3):
-            recorder.record(0.1 * k, [[0, 0, 0], [5, 5, 0]], [[0, 0, 0, 1]] * 2, [0.2, -0.3], [0.0, 0.1])
+            recorder.record(0.1 * k, [[0, 0, 0], [5, 5, 0]], [[0, 0, 0, 1]] * 2,
+                            joints=joints([0.2, -0.3], [0.0, 0.1]), levels=[0, 2])
     assert validate_stage(path) == []
     text = path.read_text()
     assert text.startswith("#usda")
@@ -146,8 +164,9 @@ def test_stage_validates_with_every_option(tmp_path):
     assert normals[:, 2].min() > 0.5
     buoys = stage.GetPrimAtPath("/World/Route/Waypoints").GetChildren()
     assert [b.GetDisplayName() for b in buoys] == ["A", "B"]
-    # The prototype hull is the real E-Boat's 2.489 m by 0.958 m at the sheer (sheet, real geometry).
-    hull = np.array(UsdGeom.Mesh.Get(stage, "/Library/EBoat/Body/Hull").GetPointsAttr().Get())
+    # The prototype's body (hull, keel, mast) is the real E-Boat's 2.489 m by 0.958 m at the sheer (sheet, real
+    # geometry).
+    hull = np.array(UsdGeom.Mesh.Get(stage, "/Library/E_Boat/Body/Mesh").GetPointsAttr().Get())
     assert np.ptp(hull[:, 0]) == pytest.approx(2.489, abs=0.001)
     assert np.ptp(hull[:, 1]) == pytest.approx(0.958, abs=0.003)
 
@@ -157,10 +176,10 @@ def test_exception_while_recording_leaves_nothing(tmp_path):
     target.write_bytes(b"the previous recording")
     ocean = ow.Ocean(small_sea(), device="cpu")
     with pytest.raises(RuntimeError, match="simulation blew up"):
-        with StageRecorder(target, fps=10.0, ocean=OceanDrawing(ocean), fleet=FleetDrawing(2),
+        with StageRecorder(target, fps=10.0, ocean=OceanDrawing(ocean), fleet=eboats(2),
                            save_every=1) as recorder:
             for k in range(3):
-                recorder.record(0.1 * k, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+                recorder.record(0.1 * k, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints=still(2))
             raise RuntimeError("simulation blew up")
     assert target.read_bytes() == b"the previous recording"
     assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
@@ -263,10 +282,10 @@ def test_looping_ocean_lies_under_every_boat_wherever_it_sailed(tmp_path, rng):
     quaternions = np.tile([0.0, 0.0, 0.0, 1.0], (2, 1))
     recorder = StageRecorder(tmp_path / "far.usdc", fps=2.0,
                              ocean=OceanDrawing(ocean, resolution=16, margin=margin, loop=True),
-                             fleet=FleetDrawing(2), route=RouteDrawing([[0.0, 0.0], [4.0, 3.0]]))
+                             fleet=eboats(2), route=RouteDrawing([[0.0, 0.0], [4.0, 3.0]]))
     positions = [start + drift * k / 10.0 for k in range(11)]
     for k, where in enumerate(positions):
-        recorder.record(0.5 * (k + 1), where, quaternions)
+        recorder.record(0.5 * (k + 1), where, quaternions, joints=still(2))
     stage = Usd.Stage.Open(recorder.close())
     points = np.array(UsdGeom.Mesh.Get(stage, "/World/Ocean").GetPointsAttr().Get(1.0))
     visited = np.concatenate(positions)[:, :2]
@@ -309,14 +328,15 @@ def _sea(**overrides):
     (lambda: dict(fps=10.0, ocean=OceanDrawing(_sea(), loop=True)), r"OceanDrawing\.loop needs .*loop_period"),
     (lambda: dict(fps=10.0, ocean=OceanDrawing("sea")), r"OceanDrawing\.ocean must be an Ocean"),
     (lambda: dict(fps=10.0, fleet=FleetDrawing(-2)), r"FleetDrawing\.count"),
-    (lambda: dict(fps=10.0, fleet=FleetDrawing(2, instanced="yes")), r"FleetDrawing\.instanced"),
-    (lambda: dict(fps=10.0, fleet=FleetDrawing(2, boat="V-C")), r"FleetDrawing\.boat"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(2, instanced="yes", vessel=EBOAT)), r"FleetDrawing\.instanced"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(2)), r"FleetDrawing\.vessel: 2 boats need the vessel they are"),
+    (lambda: dict(fps=10.0, fleet=FleetDrawing(2, vessel="V-C")), r"FleetDrawing\.vessel: expected a vessel"),
     (lambda: dict(fps=10.0, route=RouteDrawing([1.0, 2.0])), r"RouteDrawing\.points"),
     (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], labels="ABC")), r"RouteDrawing\.labels"),
     (lambda: dict(fps=10.0, route=RouteDrawing([[0.0, 0.0], [1.0, 2.0]], path="no")), r"RouteDrawing\.path"),
     (lambda: dict(fps=10.0, objects=[ow.perception.SceneObject.buoy((1.0, 2.0))], object_labels=["a", "b"]),
      r"StageRecorder\.object_labels must name each of the 1 objects, got 2"),
-    (lambda: dict(fps=10.0, fleet=FleetDrawing(2), ascii=True), "ascii"),
+    (lambda: dict(fps=10.0, fleet=eboats(2), ascii=True), "ascii"),
     (lambda: dict(fps=10.0, wind=WindArrow(math.nan)), r"WindArrow\.direction"),
     (lambda: dict(fps=10.0, wind=WindArrow(0.5, speed=-1.0)), r"WindArrow\.speed"),
     (lambda: dict(fps=10.0, wind=WindArrow(0.5, origin=(0.0, 0.0))), r"WindArrow\.origin"),
@@ -339,10 +359,11 @@ def test_bad_argument_is_refused_by_name(tmp_path, arguments, name):
     assert os.listdir(tmp_path) == []
 
 
-def test_for_eboat_fills_in_what_the_options_leave_out(tmp_path):
+def test_for_vessel_fills_in_what_the_options_leave_out(tmp_path):
     config = EBoatSimulatorConfig(ocean=small_sea(loop_period=4.0), wind=ow.WindConfig(speed=6.0, direction=1.0))
-    sim = EBoatSimulator(config, 2, device="cpu")
-    recorder = StageRecorder.for_eboat(tmp_path / "run.usdc", sim, fps=FPS)
+    vessel = EBoatVessel(config)
+    sim = vessel.simulator(2, device="cpu")
+    recorder = StageRecorder.for_vessel(tmp_path / "run.usdc", vessel, sim, fps=FPS)
     assert recorder.ocean is sim.ocean and not recorder.ocean_loop and recorder.ocean_resolution == 64
     assert recorder.boats == 2 and not recorder.instanced and recorder.route is None
     direction, speed = recorder.wind
@@ -350,12 +371,12 @@ def test_for_eboat_fills_in_what_the_options_leave_out(tmp_path):
     assert speed == pytest.approx(float(sim.state.wind_mean_speed.numpy()[0]))
     recorder.abort()
     # Groups given win; None leaves a part out.
-    recorder = StageRecorder.for_eboat(tmp_path / "run.usdc", sim, fps=FPS, ocean=OceanDrawing(sim.ocean, loop=True),
-                                       fleet=FleetDrawing(2, instanced=True), wind=None)
+    recorder = StageRecorder.for_vessel(tmp_path / "run.usdc", vessel, sim, fps=FPS, wind=None,
+                                        ocean=OceanDrawing(sim.ocean, loop=True), fleet=eboats(2, instanced=True))
     assert recorder.ocean_loop and recorder.loop_path == str(tmp_path / "run_ocean_loop.usdc")
     assert recorder.instanced and recorder.wind is None
     recorder.abort()
-    recorder = StageRecorder.for_eboat(tmp_path / "run.usdc", sim, fps=FPS, ocean=None, wind=WindArrow(0.5))
+    recorder = StageRecorder.for_vessel(tmp_path / "run.usdc", vessel, sim, fps=FPS, ocean=None, wind=WindArrow(0.5))
     assert recorder.ocean is None and recorder.wind == (0.5, 5.0) and recorder.boats == 2
     recorder.abort()
     assert os.listdir(tmp_path) == []
@@ -374,20 +395,26 @@ def test_option_groups_are_frozen_and_normalised():
     assert drawing.extent == (0.0, 10.0, -5.0, 5.0) and drawing.margin == 3.0 and drawing.resolution == 64
     with pytest.raises(dataclasses.FrozenInstanceError):
         drawing.resolution = 8
-    assert FleetDrawing() == FleetDrawing(0, instanced=None, boat=None)
+    assert FleetDrawing() == FleetDrawing(0, instanced=None, vessel=None)
 
 
 def test_bad_frame_is_refused_by_name(tmp_path):
     with pytest.raises(ValueError, match="path must end in"):
         StageRecorder(tmp_path / "run.txt", fps=10.0)
-    with StageRecorder(tmp_path / "run.usdc", fps=10.0, fleet=FleetDrawing(2)) as recorder:
+    with StageRecorder(tmp_path / "run.usdc", fps=10.0, fleet=eboats(2)) as recorder:
         with pytest.raises(ValueError, match="positions must have shape"):
-            recorder.record(0.0, np.zeros((3, 3)), [[0, 0, 0, 1]] * 2)
+            recorder.record(0.0, np.zeros((3, 3)), [[0, 0, 0, 1]] * 2, joints=still(2))
         with pytest.raises(ValueError, match="orientations"):
-            recorder.record(0.0, np.zeros((2, 3)), np.zeros((2, 4)))
-        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+            recorder.record(0.0, np.zeros((2, 3)), np.zeros((2, 4)), joints=still(2))
+        with pytest.raises(ValueError, match=r"joints\['rudder_angle'\] is required \(the E-Boat's parts turn"):
+            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints={"boom_angle": np.zeros(2)})
+        with pytest.raises(ValueError, match=r"joints\['boom_angle'\] holds NaN"):
+            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints=joints([0.0, math.nan]))
+        with pytest.raises(ValueError, match=r"the E-Boat's parts turn with no joint 'thruster_angle'"):
+            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints=still(2) | {"thruster_angle": [0, 0]})
+        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints=still(2))
         with pytest.raises(ValueError, match="time_s must increase"):
-            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints=still(2))
     with pytest.raises(ValueError, match="loop_period"):
         write_ocean_loop(tmp_path / "loop.usdc", ow.Ocean(small_sea(), device="cpu"))
     assert sorted(os.listdir(tmp_path)) == ["run.usdc"]
@@ -396,9 +423,10 @@ def test_bad_frame_is_refused_by_name(tmp_path):
 def test_preview_png_is_written(tmp_path):
     ocean = ow.Ocean(small_sea(), device="cpu")
     stage = tmp_path / "run.usdc"
-    with StageRecorder(stage, fps=10.0, ocean=OceanDrawing(ocean), fleet=FleetDrawing(2),
+    with StageRecorder(stage, fps=10.0, ocean=OceanDrawing(ocean), fleet=eboats(2),
                        route=RouteDrawing([[0, 0], [20, 10]]), wind=WindArrow(2.0)) as rec:
-        rec.record(0.0, [[0, 0, 0], [8, 3, 0]], [[0, 0, 0, 1], [0, 0, 0.38268343, 0.92387953]], [0.5, -0.5])
+        rec.record(0.0, [[0, 0, 0], [8, 3, 0]], [[0, 0, 0, 1], [0, 0, 0.38268343, 0.92387953]],
+                   joints=joints([0.5, -0.5]))
     png = render_preview(stage)
     assert png == str(tmp_path / "run.png")
     with open(png, "rb") as handle:
@@ -417,9 +445,9 @@ def test_the_preview_frame_is_where_the_fleet_is_most_spread(tmp_path, rng, inst
     positions = {0.0: np.zeros((3, 2)), 1.0: apart, 2.0: 0.2 * apart}
     stage = tmp_path / "fleet.usdc"
     level = [[0, 0, 0, 1]] * 3
-    with StageRecorder(stage, fps=1.0, fleet=FleetDrawing(3, instanced=instanced)) as recorder:
+    with StageRecorder(stage, fps=1.0, fleet=eboats(3, instanced=instanced)) as recorder:
         for time_s, xy in positions.items():
-            recorder.record(time_s, np.column_stack([xy, np.zeros(3)]), level)
+            recorder.record(time_s, np.column_stack([xy, np.zeros(3)]), level, joints=still(3))
     rate = recorder.time_codes_per_second
     assert spread_time_code(stage) == pytest.approx(1.0 * rate)
     codes, tracks = boat_tracks(Usd.Stage.Open(str(stage)))
@@ -496,15 +524,17 @@ def test_every_visible_part_has_a_preview_surface(tmp_path, instanced, colors):
     ocean = ow.Ocean(small_sea(), device="cpu")
     path = tmp_path / "looks.usda"
     with StageRecorder(path, fps=2.0, ocean=OceanDrawing(ocean, resolution=8, colors=colors),
-                       fleet=FleetDrawing(3, instanced=instanced), route=RouteDrawing([[0.0, 0.0], [20.0, 5.0]]),
+                       fleet=eboats(3, instanced=instanced), route=RouteDrawing([[0.0, 0.0], [20.0, 5.0]]),
                        wind=WindArrow(1.0)) as recorder:
-        recorder.record(0.0, [[0, 0, 0], [5, 5, 0], [9, 0, 0]], [[0, 0, 0, 1]] * 3)
+        recorder.record(0.0, [[0, 0, 0], [5, 5, 0], [9, 0, 0]], [[0, 0, 0, 1]] * 3, joints=still(3))
     assert validate_stage(path) == []
     stage = Usd.Stage.Open(str(path))
     gprims = [p for p in Usd.PrimRange(stage.GetPrimAtPath("/World"), Usd.TraverseInstanceProxies())
               if p.IsA(UsdGeom.Gprim)]
     names = {p.GetName().split("_")[0] for p in gprims}  # Buoy_0, Buoy_1: the buoys, named by their labels
-    assert {"Hull", "Keel", "Mast", "Spar", "Sail", "Blade", "Buoy", "Path", "Arrow", "Ocean"} <= names
+    assert {"Mesh", "Buoy", "Path", "Arrow", "Ocean"} <= names
+    parts = {p.GetParent().GetName() for p in gprims if p.GetName() == "Mesh"}  # the vessel's parts
+    assert parts == {"Body", "Boom", "Reef", "Rudder"}
     hulls = []
     for prim in gprims:
         surface = _bound_surface(prim)
@@ -515,7 +545,7 @@ def test_every_visible_part_has_a_preview_surface(tmp_path, instanced, colors):
         assert not diffuse.HasConnectedSource()
         # The material shows the colour the prim displays without one.
         assert tuple(diffuse.Get()) == pytest.approx(_display_color(prim), abs=1e-6), prim.GetPath()
-        if prim.GetName() == "Hull":
+        if prim.GetName() == "Mesh" and prim.GetParent().GetName() == "Body":
             hulls.append(tuple(diffuse.Get()))
     ocean_surface = _bound_surface(stage.GetPrimAtPath("/World/Ocean"))
     diffuse = ocean_surface.GetInput("diffuseColor")
@@ -549,9 +579,9 @@ def test_stage_plays_in_real_time(tmp_path, rate):
     positions = [np.array([[2.0 * t, -t, 0.0]]) for t in times]
     path = tmp_path / "rate.usdc"
     with StageRecorder(path, fps=4.0, ocean=OceanDrawing(ocean, resolution=8, loop=True),
-                       fleet=FleetDrawing(1, instanced=False), **options) as recorder:
+                       fleet=eboats(1, instanced=False), **options) as recorder:
         for t, where in zip(times, positions):
-            recorder.record(t, where, [[0, 0, 0, 1]])
+            recorder.record(t, where, [[0, 0, 0, 1]], joints=still(1))
     stage = Usd.Stage.Open(str(path))
     assert stage.GetTimeCodesPerSecond() == stage.GetFramesPerSecond() == expected
     span = (stage.GetEndTimeCode() - stage.GetStartTimeCode()) / stage.GetFramesPerSecond()
@@ -577,9 +607,9 @@ def test_model_hierarchy_kinds(tmp_path, instanced):
     from pxr import Kind
 
     path = tmp_path / "kinds.usda"
-    with StageRecorder(path, fps=2.0, fleet=FleetDrawing(2, instanced=instanced), route=RouteDrawing([[0, 0], [5, 5]]),
+    with StageRecorder(path, fps=2.0, fleet=eboats(2, instanced=instanced), route=RouteDrawing([[0, 0], [5, 5]]),
                        wind=WindArrow(0.0)) as recorder:
-        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2)
+        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1]] * 2, joints=still(2))
     stage = Usd.Stage.Open(str(path))
 
     def kind(where):
@@ -617,9 +647,9 @@ def test_camera_frames_route_and_boats_and_the_sun_shines_down(tmp_path):
     route = np.array([[0.0, 0.0], [60.0, -40.0], [120.0, 10.0]])
     boats = np.array([[-10.0, 5.0, 0.0], [130.0, 30.0, 0.0]])
     path = tmp_path / "view.usdc"
-    with StageRecorder(path, fps=1.0, fleet=FleetDrawing(2), route=RouteDrawing(route)) as recorder:
-        recorder.record(0.0, boats, [[0, 0, 0, 1]] * 2)
-        recorder.record(1.0, boats + [0.0, -60.0, 0.0], [[0, 0, 0, 1]] * 2)  # where the camera must reach too
+    with StageRecorder(path, fps=1.0, fleet=eboats(2), route=RouteDrawing(route)) as recorder:
+        recorder.record(0.0, boats, [[0, 0, 0, 1]] * 2, joints=still(2))
+        recorder.record(1.0, boats + [0.0, -60.0, 0.0], [[0, 0, 0, 1]] * 2, joints=still(2))  # the camera sees it too
     assert validate_stage(path) == []
     stage = Usd.Stage.Open(str(path))
     camera = UsdGeom.Camera.Get(stage, "/World/Camera")
@@ -668,8 +698,8 @@ def test_export_usd_refuses_a_bad_out_before_making_anything(tmp_path, capsys, m
 def test_failed_recording_removes_the_folders_it_made(tmp_path):
     target = tmp_path / "made" / "for" / "it" / "run.usdc"
     with pytest.raises(RuntimeError, match="stop"):
-        with StageRecorder(target, fps=2.0, fleet=FleetDrawing(1)) as recorder:
-            recorder.record(0.0, np.zeros((1, 3)), [[0, 0, 0, 1]])
+        with StageRecorder(target, fps=2.0, fleet=eboats(1)) as recorder:
+            recorder.record(0.0, np.zeros((1, 3)), [[0, 0, 0, 1]], joints=still(1))
             raise RuntimeError("stop")
     assert os.listdir(tmp_path) == []
     # A folder that was there before stays, and so does anything else put in a folder it made.
@@ -687,9 +717,9 @@ def test_crate_saved_while_recording_is_written_afresh_at_the_end(tmp_path, rng)
 
     path = tmp_path / "long.usdc"
     positions = rng.normal(size=(60, 2, 3))
-    with StageRecorder(path, fps=2.0, fleet=FleetDrawing(2, instanced=False), save_every=5) as recorder:
+    with StageRecorder(path, fps=2.0, fleet=eboats(2, instanced=False), save_every=5) as recorder:
         for k, where in enumerate(positions):
-            recorder.record(0.5 * k, where, [[0, 0, 0, 1]] * 2, rng.normal(size=2), rng.normal(size=2))
+            recorder.record(0.5 * k, where, [[0, 0, 0, 1]] * 2, joints=joints(rng.normal(size=2), rng.normal(size=2)))
     assert os.listdir(tmp_path) == ["long.usdc"]
     fresh = tmp_path / "fresh" / "copy.usdc"
     fresh.parent.mkdir()
@@ -828,55 +858,70 @@ def test_each_boats_obstacles_in_the_stage(tmp_path):
 
 
 @pytest.mark.parametrize("instanced", [False, True], ids=["prim_per_boat", "instanced"])
-def test_each_boats_sail_is_drawn_at_its_reef_about_its_tack(device, tmp_path, instanced):
-    """Three real boats at reef levels (0, 1, 2), then (2, 0, 1) after a reset: the sail's mesh of the stage's
-    prototype, taken through USD's world transform of each boat's sail (the prim's, or the Sails instancer's
-    instance), lands where the boat's pose, the boom's pivot and angle, and the sail scaled by s = sqrt(A_k /
-    3.188) about its tack (the foot of its luff at the mast) put it, frame by frame."""
-    sim = EBoatSimulator(EBoatSimulatorConfig(wind=ow.WindConfig(speed=6.0, direction=1.0)), 3, device=device)
-    parts = eboat_parts(sim.config.boat)
-    tack = parts.sail_tack
+def test_each_boats_parts_are_drawn_where_its_state_puts_them(device, tmp_path, instanced):
+    """Three real boats at reef levels (0, 1, 2), then (2, 0, 1) after a reset, recorded through the vessel path
+    (``record_vessel``): each part's mesh of the stage's prototype, taken through USD's world transform (the
+    boat's part prim, or the part instancer's instance), lands where numpy
+    puts it from the state and the URDF's pivots: the body (hull, keel, mast) at the boat's pose; the boom's spar
+    and the sail turned by minus the boom angle about the boom's pivot, the sail scaled by s = sqrt(A_k / 3.188)
+    about its tack (the foot of its luff at the mast); the rudder's blade turned by minus the rudder angle about
+    its pivot; frame by frame."""
+    vessel = EBoatVessel(EBoatSimulatorConfig(wind=ow.WindConfig(speed=6.0, direction=1.0)))
+    sim = vessel.simulator(3, device=device)
+    meshes = eboat_parts(sim.config.boat)
+    tack = meshes.sail_tack
+    local = {"Body": concatenate(meshes.hull, meshes.keel, meshes.mast).points, "Boom": meshes.spar.points,
+             "Reef": meshes.sail.points, "Rudder": meshes.blade.points}
     areas = np.array([3.188, 2.0, 1.15])
     path = tmp_path / "reef.usda"
     frames = []
-    with StageRecorder.for_eboat(path, sim, fps=FPS, ocean=None, wind=None,
-                                 fleet=FleetDrawing(3, instanced=instanced, boat=sim.config.boat)) as recorder:
+    with StageRecorder.for_vessel(path, vessel, sim, fps=FPS, ocean=None, wind=None,
+                                  fleet=FleetDrawing(3, instanced=instanced, vessel=vessel)) as recorder:
         for levels in ([0, 1, 2], [2, 0, 1]):
             sim.reset(position=[[0.0, 0.0, 0.05], [10.0, 5.0, 0.05], [-8.0, 12.0, 0.05]], heading=[0.0, 1.2, 2.5],
                       sheet=0.8, reef_level=levels)
+            sim.tensors.control.rudder[:] = sim.tensors.control.rudder.new_tensor([0.3, -0.4, 0.1])
             for _ in range(4):
                 sim.step()
-            record_eboat(recorder, sim)
+            record_vessel(recorder, sim)
             state = sim.state
             frames.append(dict(time=sim.time, levels=levels, position=state.position.numpy().astype(np.float64),
                                orientation=state.orientation.numpy().astype(np.float64),
-                               boom=state.boom_angle.numpy().astype(np.float64)))
+                               boom=state.boom_angle.numpy().astype(np.float64),
+                               rudder=state.rudder_angle.numpy().astype(np.float64)))
+    assert np.all(np.abs(frames[-1]["boom"]) > 1e-3) and np.all(np.abs(frames[-1]["rudder"]) > 1e-3)
     stage = Usd.Stage.Open(str(path))
-    mesh = UsdGeom.Mesh.Get(stage, "/Library/EBoat/Reef/Sail")
-    local = np.array(mesh.GetPointsAttr().Get(), dtype=np.float64)
-    np.testing.assert_allclose(local, parts.sail.points - tack, atol=1e-6)  # the full sail, its tack at 0
+    for name, points in local.items():
+        library = UsdGeom.Mesh.Get(stage, f"/Library/E_Boat/{name}/Mesh").GetPointsAttr().Get()
+        np.testing.assert_allclose(np.array(library, dtype=np.float64), points, atol=1e-6)
     for frame in frames:
         code = frame["time"] * TCPS
-        if instanced:
-            instancer = UsdGeom.PointInstancer(stage.GetPrimAtPath("/World/Fleet/Sails"))
-            matrices = [np.array(m) for m in instancer.ComputeInstanceTransformsAtTime(code, code)]
-        else:
-            cache = UsdGeom.XformCache(code)
-            matrices = [np.array(cache.GetLocalToWorldTransform(stage.GetPrimAtPath(f"/World/Fleet/Boat_{i:04d}/Boom/"
-                                                                                     "Reef"))) for i in range(3)]
-        assert len(matrices) == 3
-        for i, matrix in enumerate(matrices):
-            s = math.sqrt(areas[frame["levels"][i]] / 3.188)
-            drawn = np.c_[local, np.ones(len(local))] @ matrix
-            boom = Rotation.from_euler("z", -frame["boom"][i])
-            body = BOOM_PIVOT + boom.apply(tack + s * (parts.sail.points - tack))
-            expected = Rotation.from_quat(frame["orientation"][i]).apply(body) + frame["position"][i]
-            np.testing.assert_allclose(drawn[:, :3], expected, atol=2e-4)
+        for name, points in local.items():
+            if instanced:
+                # An instance's transform includes its prototype's own (USD's default, IncludeProtoXform).
+                instancer = UsdGeom.PointInstancer(stage.GetPrimAtPath(f"/World/Fleet/{name}"))
+                matrices = [np.array(m) for m in instancer.ComputeInstanceTransformsAtTime(code, code)]
+            else:
+                cache = UsdGeom.XformCache(code)
+                matrices = [np.array(cache.GetLocalToWorldTransform(stage.GetPrimAtPath(
+                    f"/World/Fleet/Boat_{i:04d}/{name}"))) for i in range(3)]
+            assert len(matrices) == 3
+            for i, matrix in enumerate(matrices):
+                drawn = (np.c_[points, np.ones(len(points))] @ matrix)[:, :3]
+                boom = Rotation.from_euler("z", -frame["boom"][i])
+                rudder = Rotation.from_euler("z", -frame["rudder"][i])
+                s = math.sqrt(areas[frame["levels"][i]] / 3.188)
+                body = {"Body": points, "Boom": BOOM_PIVOT + boom.apply(points),
+                        "Reef": BOOM_PIVOT + boom.apply(tack + s * (points - tack)),
+                        "Rudder": RUDDER_PIVOT + rudder.apply(points)}[name]
+                expected = Rotation.from_quat(frame["orientation"][i]).apply(body) + frame["position"][i]
+                np.testing.assert_allclose(drawn, expected, atol=2e-4, err_msg=f"boat {i} {name}")
     assert validate_stage(str(path)) == []
 
 
-def test_bad_sail_scales_are_refused(tmp_path):
-    recorder = StageRecorder(tmp_path / "bad.usda", fps=FPS, fleet=FleetDrawing(2))
-    with pytest.raises(ValueError, match=r"sail_scales must lie in \(0, 1\]"):
-        recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1.0]] * 2, sail_scales=[1.0, 1.2])
+def test_bad_levels_are_refused(tmp_path):
+    recorder = StageRecorder(tmp_path / "bad.usda", fps=FPS, fleet=eboats(2))
+    for levels in ([0, 3], [0, -1], [0.5, 1]):
+        with pytest.raises(ValueError, match=r"levels must be whole numbers in \[0, 3\) \(the E-Boat's reef_level\)"):
+            recorder.record(0.0, np.zeros((2, 3)), [[0, 0, 0, 1.0]] * 2, joints=still(2), levels=levels)
     recorder.abort()

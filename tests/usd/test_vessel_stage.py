@@ -21,13 +21,15 @@ PARTS = ("pontoons", "frame", "left_thruster", "right_thruster")
 """The WAM-V's parts as the stage names them."""
 
 
-def test_a_stage_of_two_wamvs_follows_the_simulated_poses(tmp_path, rng):
+@pytest.mark.parametrize("instanced", [False, True], ids=["prim_per_boat", "instanced"])
+def test_a_stage_of_two_wamvs_follows_the_simulated_poses(tmp_path, rng, instanced):
     vessel = Wamv(WamvSimulatorConfig(boat=WamvConfig(thrusters=ThrusterLayout.AZIMUTH)))
     env = VrxEnv(VrxTaskConfig(kind="wayfinding", goals=2, vessel=vessel), 2, device="cpu",
                  seed=int(rng.integers(1 << 30)))
     path = tmp_path / "wamv.usda"
     frames = []
-    with StageRecorder.for_vessel(path, vessel, env.simulator, fps=2.0, ocean=None, wind=None) as recorder:
+    with StageRecorder.for_vessel(path, vessel, env.simulator, fps=2.0, ocean=None, wind=None,
+                                  fleet=FleetDrawing(2, vessel=vessel, instanced=instanced)) as recorder:
         for _ in range(3):
             env.step(torch.as_tensor(rng.uniform(-1, 1, (2, env.num_actions)), dtype=torch.float32,
                                      device=env.torch_device))
@@ -44,10 +46,19 @@ def test_a_stage_of_two_wamvs_follows_the_simulated_poses(tmp_path, rng):
         local = np.array(UsdGeom.Mesh.Get(stage, f"/Library/WAM_V/{name}/Mesh").GetPointsAttr().Get(), np.float64)
         np.testing.assert_allclose(local, parts[name].mesh.points, atol=1e-6)
     for frame in frames:
-        cache = UsdGeom.XformCache(frame["code"])
+        code = frame["code"]
+        cache = UsdGeom.XformCache(code)
+        if instanced:
+            instancers = {name: UsdGeom.PointInstancer(stage.GetPrimAtPath(f"/World/Fleet/{name}")) for name in PARTS}
+            matrices = {name: [np.array(m) for m in instancer.ComputeInstanceTransformsAtTime(code, code)]
+                        for name, instancer in instancers.items()}
+        else:
+            matrices = {name: [np.array(cache.GetLocalToWorldTransform(stage.GetPrimAtPath(
+                f"/World/Fleet/Boat_{boat:04d}/{name}"))) for boat in range(2)] for name in PARTS}
         for boat in range(2):
-            assert sorted(child.GetName() for child in stage.GetPrimAtPath(f"/World/Fleet/Boat_{boat:04d}")
-                          .GetChildren()) == sorted(PARTS)
+            if not instanced:
+                assert sorted(child.GetName() for child in stage.GetPrimAtPath(f"/World/Fleet/Boat_{boat:04d}")
+                              .GetChildren()) == sorted(PARTS)
             pose = Rotation.from_quat(frame["orientation"][boat])
             for name in PARTS:
                 part = parts[name]
@@ -56,16 +67,12 @@ def test_a_stage_of_two_wamvs_follows_the_simulated_poses(tmp_path, rng):
                     turn = Rotation.from_euler("z", -frame["angle"][boat, part.joint_column])
                     points = turn.apply(points) + part.pivot
                 expected = pose.apply(points) + frame["position"][boat]
-                matrix = np.array(cache.GetLocalToWorldTransform(
-                    stage.GetPrimAtPath(f"/World/Fleet/Boat_{boat:04d}/{name}")))
-                drawn = np.c_[part.mesh.points, np.ones(len(points))] @ matrix
+                drawn = np.c_[part.mesh.points, np.ones(len(points))] @ matrices[name][boat]
                 np.testing.assert_allclose(drawn[:, :3], expected, atol=1e-4, err_msg=f"boat {boat} {name}")
 
 
-def test_a_vessel_fleet_takes_joints_not_the_eboats_angles(tmp_path):
+def test_a_vessel_fleet_refuses_missing_joints_and_levels_it_has_none_of(tmp_path):
     vessel = Wamv()
-    with pytest.raises(ValueError, match=r"FleetDrawing: a vessel is drawn one prim per boat"):
-        FleetDrawing(2, vessel=vessel, instanced=True)
     with pytest.raises(ValueError, match=r"FleetDrawing\.vessel: expected a vessel"):
         FleetDrawing(2, vessel="WAM-V")
     recorder = StageRecorder(tmp_path / "bad.usda", fps=2.0, fleet=FleetDrawing(2, vessel=vessel))
@@ -73,8 +80,8 @@ def test_a_vessel_fleet_takes_joints_not_the_eboats_angles(tmp_path):
         where, facing = np.zeros((2, 3)), [[0.0, 0.0, 0.0, 1.0]] * 2
         with pytest.raises(ValueError, match=r"joints\['thruster_angle'\] is required"):
             recorder.record(0.0, where, facing)
-        with pytest.raises(ValueError, match=r"not boom_angles"):
-            recorder.record(0.0, where, facing, [0.1, 0.2], joints={"thruster_angle": np.zeros((2, 2))})
+        with pytest.raises(ValueError, match=r"levels given, but the WAM-V draws no part at a size of each boat's"):
+            recorder.record(0.0, where, facing, joints={"thruster_angle": np.zeros((2, 2))}, levels=[0, 0])
         with pytest.raises(ValueError, match=r"joints\['thruster_angle'\] must have shape \(2,\) or \(2, C\)"):
             recorder.record(0.0, where, facing, joints={"thruster_angle": np.zeros((3, 2))})
     finally:

@@ -180,7 +180,7 @@ def test_a_frame_of_an_avoid_task_shows_its_obstacles(tmp_path, monkeypatch):
     assert hit["kind"][0] == HIT_OBJECT and hit["index"][0] == row
     assert hit["distance"][0] == pytest.approx(3.0, abs=1e-3)
     pictures = {}
-    for name, seen in (("obstacles", scene), ("fleet", Scene.for_simulator(env.simulator))):
+    for name, seen in (("obstacles", scene), ("fleet", Scene.for_simulator(env.simulator, vessel=env.vessel))):
         camera = ViewCamera(seen, 33, 33, np.radians(40.0), env=0)
         camera.look_at(eye, target)
         camera.render()

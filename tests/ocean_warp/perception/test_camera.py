@@ -21,7 +21,7 @@ import warp as wp
 from scipy.spatial.transform import Rotation
 
 from ocean_warp import Ocean, OceanConfig
-from ocean_warp.eboat import Hydrostatics
+from ocean_warp.eboat import EBoatVessel, Hydrostatics
 from ocean_warp.envs import SailingEnv, WaypointConfig
 from ocean_warp.envs.decision_hook import DecisionHook
 from ocean_warp.envs.sensors import CameraHook
@@ -45,7 +45,8 @@ def boats_in_one_world(ocean: Ocean, positions, yaws, objects=()) -> Scene:
     return Scene(ocean, envs=1, boat_env=np.zeros(count, np.int64),
                  boat_position=wp.array(np.asarray(positions, np.float32), dtype=wp.vec3, device=device),
                  boat_orientation=wp.array(quaternions.astype(np.float32), dtype=wp.quat, device=device),
-                 boom_angle=wp.zeros(count, dtype=float, device=device), objects=objects)
+                 parts=EBoatVessel().parts(hull_detail=1, rudder=False), scaling=EBoatVessel().part_scaling(),
+                 joints={"boom_angle": wp.zeros(count, dtype=float, device=device)}, objects=objects)
 
 
 def camera_rotation(config: CameraConfig, boat_yaw: float) -> Rotation:

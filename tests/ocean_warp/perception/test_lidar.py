@@ -20,7 +20,7 @@ import warp as wp
 from scipy.spatial.transform import Rotation
 
 from ocean_warp import Ocean, OceanConfig
-from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, Hydrostatics
+from ocean_warp.eboat import EBoatConfig, EBoatSimulator, EBoatSimulatorConfig, EBoatVessel, Hydrostatics
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.envs import SailingEnv, WaypointConfig
 from ocean_warp.envs.decision_hook import DecisionHook
@@ -29,6 +29,7 @@ from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATE
 from ocean_warp.meshes import concatenate
 from ocean_warp.perception import Lidar, LidarConfig, Scene, SceneObject, Shape
 from ocean_warp.torch_streams import ordered_with_torch
+from ocean_warp.vessel import sensor_mount
 from tests.env_buffers import assert_same_buffers
 
 NONE, WATER, OBJECT, BOAT = int(HIT_NONE), int(HIT_WATER), int(HIT_OBJECT), int(HIT_BOAT)
@@ -47,6 +48,10 @@ def random_quaternions(rng, count: int, tilt: float) -> np.ndarray:
     return Rotation.from_euler("ZYX", angles).as_quat()
 
 
+SENSOR_PARTS = EBoatVessel().parts(hull_detail=1, rudder=False)
+"""The E-Boat as the lidar sees it in a SailingEnv (hull, keel and mast at the physics detail, boom and sail)."""
+
+
 def boat_scene(ocean, positions, quaternions, *, objects=(), boat_env=None, envs=None, origins=None) -> Scene:
     """A scene of boats at the given poses; by default each boat in an environment of its own."""
     count = len(positions)
@@ -56,7 +61,8 @@ def boat_scene(ocean, positions, quaternions, *, objects=(), boat_env=None, envs
     orientation = wp.array(np.asarray(quaternions, np.float32), dtype=wp.quat, device=device)
     boom = wp.zeros(count, dtype=float, device=device)
     return Scene(ocean, envs=envs or count, boat_env=boat_env, boat_position=position, boat_orientation=orientation,
-                 boom_angle=boom, objects=objects, origins=origins)
+                 parts=SENSOR_PARTS, joints={"boom_angle": boom}, scaling=EBoatVessel().part_scaling(), objects=objects,
+                 origins=origins)
 
 
 def scanned(lidar: Lidar) -> tuple[np.ndarray, np.ndarray]:
@@ -290,7 +296,7 @@ def test_another_boats_hull_at_a_known_pose(device, rng):
     headings = rng.uniform(-math.pi, math.pi, 2)
     sim.reset(position=[[0.0, 0.0, 0.0], [distance * math.cos(bearing), distance * math.sin(bearing), 0.0]],
               heading=headings)
-    scene = Scene.for_simulator(sim)
+    scene = Scene.for_simulator(sim, vessel=EBoatVessel(sim.config), parts=SENSOR_PARTS)
     config = LidarConfig(channels=24, beams=64, horizontal_fov=1.0, elevation_min=-0.35, elevation_max=0.45,
                          max_range=20.0, mount=(0.0, 0.0, 1.2), mount_rpy=(0.0, 0.0, float(bearing - headings[0])))
     ranges, kinds = scanned(Lidar(config, scene))
@@ -475,10 +481,15 @@ def test_presets():
     assert (scan.channels, scan.beams, scan.beam_count, scan.horizontal_fov) == (1, 360, 360, 2 * math.pi)
     azimuth = scan.azimuths()
     assert azimuth[0] == -math.pi and azimuth[180] == 0.0 and np.allclose(np.diff(azimuth), math.radians(1.0))
-    vlp = LidarConfig.multi_channel(16)
+    masthead = sensor_mount(EBoatVessel(), "masthead")
+    vlp = LidarConfig.multi_channel(16, mount=masthead)
     assert (vlp.channels, vlp.max_range) == (16, 100.0)
     np.testing.assert_allclose(np.degrees(vlp.elevations()), np.arange(-15.0, 16.0, 2.0), atol=1e-12)
-    assert LidarConfig.multi_channel(16, beams=1800).beam_count == 28_800
+    assert LidarConfig.multi_channel(16, mount=masthead, beams=1800).beam_count == 28_800
+    # The sheet's mast joint, 0.595 m forward and 0.153 m below the hull link (0.2106 m up), plus the 3.55 m mast.
+    np.testing.assert_allclose(vlp.mount, (0.595, 0.0, 0.2106 - 0.153 + 3.55), atol=1e-9)
+    with pytest.raises(ValueError, match=r"the E-Boat has no sensor place 'keel' \(its places: masthead\)"):
+        sensor_mount(EBoatVessel(), "keel")
 
 
 # --- inside a SailingEnv decision -------------------------------------------------------------------------

@@ -9,6 +9,7 @@ import pytest
 import trimesh
 import warp as wp
 
+from ocean_warp.eboat import EBoatVessel
 from ocean_warp.eboat.parts import eboat_parts
 from ocean_warp.frames import quaternion_from_roll_pitch_yaw
 from ocean_warp.kernels.ray_cast import HIT_BOAT, HIT_NONE, HIT_OBJECT, HIT_WATER
@@ -32,9 +33,11 @@ def boats(device, poses=(), envs=None):
     env_of = np.zeros(count, np.int64) if envs is None else np.asarray(envs)
     if not len(poses):
         env_of = np.full(count, -1)
+    vessel = EBoatVessel()
     return dict(boat_env=env_of, boat_position=wp.array(position, dtype=wp.vec3, device=device),
                 boat_orientation=wp.array(orientation, dtype=wp.quat, device=device),
-                boom_angle=wp.array(boom, dtype=float, device=device))
+                parts=vessel.parts(hull_detail=1, rudder=False), scaling=vessel.part_scaling(),
+                joints={"boom_angle": wp.array(boom, dtype=float, device=device)})
 
 
 def test_flat_sea_range_is_height_over_sine_of_depression(device, rng):
