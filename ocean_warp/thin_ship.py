@@ -38,7 +38,7 @@ import math
 import numpy as np
 
 from .resistance import FROUDE_SAMPLES, FROUDE_STEP, ResiduaryResistance
-from .validation import require_finite, require_in_range, require_positive
+from .validation import require_finite, require_in_range, require_int_in_range, require_positive
 
 __all__ = ["HullOffsets", "mesh_offsets", "michell_resistance", "michell_residuary"]
 
@@ -52,7 +52,7 @@ _MAX_POINTS = 200_000
 """Cap on the lambda samples of one speed (very low Froude numbers, where the resistance is negligible)."""
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class HullOffsets:
     """A demihull's half-breadths y = f(x, z) [m] on a grid: ``stations`` x [m] (non-decreasing; a repeated
     station is a step, as at a flat end), ``depths`` z [m] (increasing, <= 0, the still water at 0) and
@@ -98,11 +98,15 @@ def mesh_offsets(vertices, triangles, waterline_z: float, *, stations: int = 40,
                  end_gap: float = 1e-6) -> HullOffsets:
     """The half-breadths of one closed demihull mesh (``vertices`` (V, 3) [m], ``triangles`` (T, 3), body frame,
     upright) below the plane z = ``waterline_z`` [m]: at each grid point, half the width across y of the mesh's
-    cut, from ray hits on its triangles. ``stations`` evenly spaced x from ``end_gap`` [m] inside either end
-    (a blunt end keeps its full section there), closed by zero stations at the ends; ``depths`` evenly spaced z
-    from the keel to the waterline, measured from the waterline."""
+    cut, from ray hits on its triangles. ``stations`` evenly spaced x from end to end, the end ones sampled
+    ``end_gap`` [m] inside and each closed by a zero station at the same x (a step: a blunt end keeps its full
+    section, a pointed one has none); ``depths`` evenly spaced z from the keel to the waterline (or the mesh's
+    top, if lower), given from the waterline."""
     owner = "mesh_offsets"
     waterline_z = require_finite(owner, "waterline_z", waterline_z)
+    stations = require_int_in_range(owner, "stations", stations, 3, 10_000)
+    depths = require_int_in_range(owner, "depths", depths, 2, 10_000)
+    end_gap = require_positive(owner, "end_gap", end_gap, unit=" [m]")
     vertices = np.asarray(vertices, dtype=np.float64)
     corners = vertices[np.asarray(triangles, dtype=np.int64)]
     x_min, x_max = corners[:, :, 0].min(), corners[:, :, 0].max()
@@ -110,8 +114,8 @@ def mesh_offsets(vertices, triangles, waterline_z: float, *, stations: int = 40,
     if not keel < waterline_z:
         raise ValueError(f"{owner}: waterline_z must lie above the keel {keel:.4g} m, got {waterline_z!r}")
     top = min(waterline_z, corners[:, :, 2].max())
-    xs = np.linspace(x_min + end_gap, x_max - end_gap, max(int(stations), 2))
-    zs = np.linspace(keel + end_gap, top, max(int(depths), 2))
+    xs = np.linspace(x_min + end_gap, x_max - end_gap, stations)
+    zs = np.linspace(keel + end_gap, top, depths)
     grid_x, grid_z = np.meshgrid(xs, zs, indexing="ij")
     points = np.column_stack([grid_x.ravel(), grid_z.ravel()])
     low = np.full(len(points), np.inf)
