@@ -24,6 +24,7 @@ from ..eboat.eboat import Profile as EBoatProfile, eboat_hydrodynamics
 from . import figures
 from .config import WamvConfig, WamvProfile
 from .hull_mesh import wamv_hull_mesh
+from .wave_resistance import wamv_wave_resistance
 
 __all__ = ["WAMV_DATABASE_FILE", "wamv_hydro_database", "wamv_boat_type", "wamv_hydrodynamics"]
 
@@ -51,13 +52,17 @@ def wamv_boat_type(config: WamvConfig, hull: Hull | None = None) -> BoatType:
     """The WAM-V of ``config`` as a :class:`BoatType` on ``hull`` (default ``wamv_hull_mesh(config)``): its mass,
     principal inertia and centre of mass; "vrx": VRX's lumped damping and added mass
     (``figures.VRX_LINEAR_DAMPING``...); "physics": the database's added mass and radiation with
-    ``seakeeping``, else none (the mesh's drag damps it)."""
+    ``seakeeping``, else none (the mesh's drag damps it), and the pontoons' wave resistance with
+    ``wave_resistance``."""
     hull = hull if hull is not None else wamv_hull_mesh(config)
     fields = {}
     if config.profile is WamvProfile.VRX:
         fields = dict(linear_damping=figures.VRX_LINEAR_DAMPING, quadratic_damping=figures.VRX_QUADRATIC_DAMPING,
                       added_mass=figures.VRX_ADDED_MASS)
-    elif config.uses_hydro_database:
-        fields = dict(seakeeping=wamv_hydro_database(hull))
+    else:
+        if config.uses_hydro_database:
+            fields["seakeeping"] = wamv_hydro_database(hull)
+        if config.wave_resistance:
+            fields["residuary"] = wamv_wave_resistance(config, hull)
     return BoatType(hull=hull, mass=config.mass, center_of_mass=config.center_of_mass,
                     inertia=np.diag(config.inertia), name=f"wamv {config.profile.value}", **fields)

@@ -18,7 +18,8 @@ class WamvProfile(str, enum.Enum):
 
     PHYSICS = "physics"
     """Per-triangle pressure on the twin-pontoon mesh with the core's cross-flow drag and ITTC friction (as the
-    E-Boat's physics profile), and, with ``WamvConfig.seakeeping``, the pontoons' own potential-flow database
+    E-Boat's physics profile), the pair's wave-making resistance by Michell's thin-ship integral
+    (``WamvConfig.wave_resistance``), and, with ``WamvConfig.seakeeping``, the pontoons' own potential-flow database
     (added mass, radiation, diffraction)."""
     VRX = "vrx"
     """Per-triangle hydrostatics (no drag terms on the mesh) with VRX's lumped linear and quadratic damping and
@@ -68,6 +69,10 @@ class WamvConfig:
     """Physics profile: sail with the pontoons' shipped hydrodynamic database (``wamv_hydrodynamics.json``: added
     mass, radiation memory, diffraction); False: a constant zero added mass and drag-only damping. Needs the
     default pontoons and mesh resolution (the database is checked against the mesh); ignored by "vrx"."""
+    wave_resistance: bool = True
+    """Physics profile: resist motion ahead with the pontoons' wave-making resistance too (Michell's thin-ship
+    integral for the pair, ``ocean_warp.wamv.wave_resistance``); False: friction alone, as the profile had it.
+    Ignored by "vrx"."""
     thrusters: ThrusterLayout | str = ThrusterLayout.FIXED
     """"fixed" (default) or "azimuth" (see :class:`ThrusterLayout`)."""
     engine_pivots: tuple = figures.ENGINE_PIVOTS
@@ -113,8 +118,9 @@ class WamvConfig:
                              f"m, got {self.pontoon_spacing!r}")
         object.__setattr__(self, "profile", require_choice(owner, "profile", self.profile, WamvProfile))
         object.__setattr__(self, "thrusters", require_choice(owner, "thrusters", self.thrusters, ThrusterLayout))
-        if not isinstance(self.seakeeping, bool):
-            raise ValueError(f"{owner}.seakeeping must be True or False, got {self.seakeeping!r}")
+        for name in ("seakeeping", "wave_resistance"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"{owner}.{name} must be True or False, got {getattr(self, name)!r}")
         object.__setattr__(self, "max_thruster_angle", require_in_range(
             owner, "max_thruster_angle", self.max_thruster_angle, 1e-6, np.pi, unit=" [rad]"))
         coefficients = np.asarray(self.wind_coefficients, dtype=np.float64).reshape(-1)
