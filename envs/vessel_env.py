@@ -164,6 +164,7 @@ class BatchedVesselEnv:
             hook.after_actions(self)
         for step in range(self.steps_per_decision):
             self.simulator.launch_step()
+            self._after_physics_step()
             if hook is not None:
                 hook.after_physics_step(self, step)
         wp.copy(self.final_position, state.position)
@@ -205,6 +206,10 @@ class BatchedVesselEnv:
 
     def _after_reset(self) -> None:
         """What a subclass adds at the end of :meth:`reset` (launches only); nothing by default."""
+
+    def _after_physics_step(self) -> None:
+        """What a subclass samples after every physics step of a decision, before the hooks' (launches only);
+        nothing by default."""
 
     def episode_log(self) -> dict[str, torch.Tensor]:
         """Statistics of the episodes that ended in the last step, see :func:`~ocean_warp.envs.protocol.episode_log`."""

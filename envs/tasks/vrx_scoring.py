@@ -11,7 +11,7 @@ so the heading counts fully on the goal and fades away from it (at 3 m off with 
 VRX wraps the heading error as pi - | |goal yaw - yaw| - pi |, the same for yaws in [-pi, pi].
 
 - Station keeping (``StationkeepingScoringPlugin::PreUpdate``): the score is the mean of e over the task's
-  running time, one sample per update (VRX: per physics step; here per decision); lower is better.
+  running time, one sample per update (VRX: per physics step; here too); lower is better.
 - Wayfinding (``WayfindingScoringPlugin::PreUpdate``): each waypoint keeps the least e the boat reached to it
   over the run, in any order; the score is the mean of those minima over the waypoints; lower is better.
 - Following the path (``NavigationScoringPlugin.cc``, the task "follow_path" on the worlds

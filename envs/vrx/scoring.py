@@ -1,6 +1,8 @@
 """VRX's score of every episode of a :class:`~ocean_warp.envs.vrx.VrxEnv`, kept on the device: the rule of its task
-(``ocean_warp.envs.tasks.vrx_scoring``) sampled once per decision at the boat's pose after the physics, over the
-episode's own goals or gates (``env.goal_count``), written into ``final_score`` when the episode ends."""
+(``ocean_warp.envs.tasks.vrx_scoring``) sampled after every physics step as VRX's plugins sample every update (once
+a decision, the station-keeping mean came out 1.6 % low: the boat's approach to its goal was sampled at the end of
+each half second), over the episode's own goals or gates (``env.goal_count``), written into ``final_score`` when
+the episode ends."""
 
 from __future__ import annotations
 
@@ -14,9 +16,9 @@ __all__ = ["VrxScorer"]
 
 
 class VrxScorer:
-    """The score of ``env``'s task: ``launch_update`` after each decision's rewards (before the same-step reset; it
-    writes the ended episodes' scores and starts their next), ``launch_reset`` when every episode restarts without a
-    score (``env.reset``). Launches only (graph-safe)."""
+    """The score of ``env``'s task: ``launch_sample`` after every physics step, ``launch_finish`` after each
+    decision's rewards (before the same-step reset; it writes the ended episodes' scores and starts their next),
+    ``launch_reset`` when every episode restarts without a score (``env.reset``). Launches only (graph-safe)."""
 
     def __init__(self, env, gate_half_width: float):
         n, device, task = env.num_envs, env.device, env.task
@@ -34,7 +36,8 @@ class VrxScorer:
             self.contact = wp.zeros(n, dtype=wp.bool, device=device)
             self.half_width = float(gate_half_width)
 
-    def launch_update(self, env) -> None:
+    def launch_sample(self, env) -> None:
+        """The rule's running state after a physics step of ``env`` (its pose, the path's gates and contact)."""
         state = env.simulator.state
         if self.kind is VrxTask.STATION_KEEPING:
             self.rule.update(state.position, state.orientation, env.target_world)
@@ -43,7 +46,11 @@ class VrxScorer:
         else:
             wp.launch(vrx_path_inputs, dim=self.gates.shape, device=env.device,
                       inputs=[env.route, self.half_width, state.status], outputs=[self.gates, self.contact])
-            self.rule.update(state.position, env.origin, self.gates, self.contact, env.decision_period)
+            self.rule.update(state.position, env.origin, self.gates, self.contact,
+                             env.decision_period / env.steps_per_decision)
+
+    def launch_finish(self, env) -> None:
+        """The scores of the episodes that ended in the decision (``env.done``) into ``env.final_score``."""
         self.rule.finish(env.done, env.final_score)
 
     def launch_reset(self, env) -> None:

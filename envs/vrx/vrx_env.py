@@ -128,7 +128,7 @@ class VrxEnv(BatchedVesselEnv):
                           state.orientation, self._course],
                   outputs=[self.reward, self.terminated, self.time_out, self.done, self.reset_mask, self.final_return,
                            self.final_length, self.final_success, self.final_status, self.final_waypoints])
-        self.scorer.launch_update(self)
+        self.scorer.launch_finish(self)
         self._observe(self.final_policy_obs, self.final_critic_obs)
         self._start_episodes(self.reset_mask)
         self._sense_components()
@@ -151,6 +151,9 @@ class VrxEnv(BatchedVesselEnv):
     # --- host calls --------------------------------------------------------------------------------
     def _after_reset(self) -> None:
         self.scorer.launch_reset(self)
+
+    def _after_physics_step(self) -> None:
+        self.scorer.launch_sample(self)
 
     def _start_height(self) -> float:
         rest = getattr(self.simulator, "rest_height", None)

@@ -9,17 +9,7 @@ import torch
 from ocean_warp.eboat import EBoatVessel
 from ocean_warp.envs.registration import make_task_config
 from ocean_warp.envs.vrx import PathCourseConfig, VrxEnv, VrxStartConfig, VrxTaskConfig
-
-
-def yaw_of(q: np.ndarray) -> np.ndarray:
-    x, y, z, w = q.T
-    return np.arctan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-
-
-def pose_error(position, yaw, goal):
-    """VRX's d + 0.75^d |heading error| (numpy)."""
-    d = np.hypot(goal[..., 0] - position[..., 0], goal[..., 1] - position[..., 1])
-    return d + 0.75**d * np.abs((goal[..., 2] - yaw + np.pi) % (2 * np.pi) - np.pi)
+from tests.envs.vrx.vrx_poses import StepPoses, pose_error, yaw_of
 
 
 @pytest.fixture(scope="module")
@@ -87,7 +77,7 @@ def test_an_episode_ends_after_its_own_last_goal(vessel, device, rng):
 
 def test_wayfinding_score_is_the_mean_over_the_episodes_own_goals(vessel, device, rng):
     """Goals 30-40 m apart (none reached): every episode runs to the time limit, and ``final_score`` equals the
-    mean over its own c goals of the least pose error to each (numpy, from every decision's pose), c differing
+    mean over its own c goals of the least pose error to each (numpy, from every physics step's pose), c differing
     from one environment of the batch to the next."""
     task = VrxTaskConfig(kind="wayfinding", goals=(1, 4), vessel=vessel, episode_time=3.0,
                          start=VrxStartConfig(goal_distance=(30.0, 40.0), goal_spacing=(30.0, 40.0)))
@@ -97,12 +87,14 @@ def test_wayfinding_score_is_the_mean_over_the_episodes_own_goals(vessel, device
     route = b.route.cpu().numpy().copy()
     count = env.goal_count.numpy().copy()
     assert len(np.unique(count)) >= 3
+    poses = StepPoses(env)
+    env.attach(poses)
     least = np.full((n, 4), np.inf)
     for _ in range(task.max_episode_length):
         env.step(torch.as_tensor(rng.uniform(-1, 1, (n, 3)), dtype=torch.float32, device=env.torch_device))
-        local = b.final_position.cpu().numpy() - b.origin.cpu().numpy()
-        yaw = yaw_of(b.final_orientation.cpu().numpy())
-        least = np.minimum(least, np.stack([pose_error(local, yaw, route[:, g]) for g in range(4)], axis=1))
+        local, yaw = poses.local(b.origin.cpu().numpy())
+        errors = np.stack([pose_error(local, yaw, route[:, g]) for g in range(4)], axis=-1)  # (steps, N, 4)
+        least = np.minimum(least, errors.min(axis=0))
     assert b.done.cpu().numpy().all()
     expected = [least[e, :count[e]].mean() for e in range(n)]
     np.testing.assert_allclose(b.final_score.cpu().numpy(), expected, rtol=2e-4, atol=2e-4)
