@@ -11,16 +11,26 @@ three torchrun jobs (two hosts, then three ranks resuming) and one in-process re
 from __future__ import annotations
 
 import hashlib
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+import uuid
 
 import numpy as np
 import pytest
 import torch
 
 from ocean_warp.envs.training import train_loop as training
-from ocean_warp.envs.training.distributed import RankContext, rank_device
+from ocean_warp.envs.training.distributed import RankContext, parameter_checksum, rank_device
 from ocean_warp.envs.training.distributed_launch import describe_failure, hosts_problem, torchrun_command
+from ocean_warp.envs.training.policy_io import read_checkpoint
 from ocean_warp.envs.training.rendezvous import Rendezvous, parse_endpoint, rendezvous_from_options
-from tests.envs.training.test_distributed import SUMMARY
+from tests.envs.training.test_distributed import SUMMARY, TINY, _tagged
 
 
 # --- options and torchrun's arguments ----------------------------------------------------------------------
@@ -147,3 +157,89 @@ def test_a_checkpoint_of_two_ranks_restores_each_ranks_random_stream_on_one_two_
     assert torch.equal(restored[3, 1], _expected_derived_state(saved[0], 1))
     assert torch.equal(restored[3, 2], _expected_derived_state(saved[0], 2))
     assert not torch.equal(restored[3, 1], restored[3, 2]) and not torch.equal(restored[3, 1], saved[1])
+
+
+# --- two hosts on this machine -----------------------------------------------------------------------------------
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def _run_tagged(commands: list[list[str]], cwd, limit_s: float = 180.0) -> list[subprocess.CompletedProcess]:
+    """Run ``commands`` at once (OMP_NUM_THREADS=1), each to its end; kill every process they started (found by a
+    tag in their environment) if they outlive ``limit_s``, and any left a few seconds after they exited."""
+    tag = uuid.uuid4().hex
+    env = dict(os.environ, OCEAN_WARP_TEST_TAG=tag, OMP_NUM_THREADS="1", PYTHONUNBUFFERED="1")
+    env.pop("OCEAN_WARP_FAULT", None)
+    processes = [subprocess.Popen(command, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                  text=True) for command in commands]
+    results = []
+    deadline = time.monotonic() + limit_s
+    try:
+        for process in processes:
+            out, err = process.communicate(timeout=max(1.0, deadline - time.monotonic()))
+            results.append(subprocess.CompletedProcess(process.args, process.returncode, out, err))
+    finally:
+        until = time.monotonic() + 5.0
+        while (left := _tagged(tag)) and time.monotonic() < until:
+            time.sleep(0.1)
+        for pid in left:
+            os.kill(pid, signal.SIGKILL)
+    assert not left, f"processes left behind: {left}"
+    return results
+
+
+def test_two_hosts_at_a_localhost_rendezvous_train_one_policy_that_resumes_on_one_host_and_on_three_ranks(
+        tmp_path, one_torch_thread):
+    root, cwd = tmp_path / "runs", tmp_path / "cwd"
+    cwd.mkdir()
+    host = [sys.executable, "-m", "ocean_warp.envs.training.train", *TINY, "--iterations", "2", "--runs-root",
+            str(root), "--run-name", "hosts", "--dist-timeout", "60", "--nnodes", "2",
+            "--rdzv-endpoint", f"127.0.0.1:{_free_port()}", "--rdzv-id", uuid.uuid4().hex[:12]]
+    first, second = _run_tagged([host, host], cwd)
+    assert first.returncode == 0, first.stderr[-3000:]
+    assert second.returncode == 0, second.stderr[-3000:]
+    said = [result.stdout for result in (first, second) if "2 ranks ended with identical networks" in result.stdout]
+    assert len(said) == 1  # rank 0's host alone reports
+    runs = list((root / "EBoatWaypoint-v0").iterdir())
+    assert len(runs) == 1 and not list(cwd.iterdir())
+    run = runs[0]
+    assert sorted(p.name for p in run.iterdir() if not p.name.startswith("events.")) == \
+        ["config.json", "distributed.json", "model_1.pt", "policy.pt", "progress.csv"]
+    assert len(list(run.glob("events.out.tfevents.*"))) == 1
+    record = json.loads((run / "distributed.json").read_text())
+    assert record["world_size"] == 2 and record["nodes"] == 2 and record["backend"] == "gloo"
+    assert sorted(place["node_rank"] for place in record["ranks"]) == [0, 1]  # two torchrun agents ...
+    assert [place["local_rank"] for place in record["ranks"]] == [0, 0]  # ... with one rank each
+    assert record["identical_parameters"] and len(set(record["parameter_checksums"])) == 1
+    checkpoint = read_checkpoint(run / "model_1.pt")
+    assert checkpoint["world_size"] == 2 and checkpoint["iteration"] == 1 and len(checkpoint["rank_rng_states"]) == 1
+    assert parameter_checksum(checkpoint["actor_state_dict"], checkpoint["critic_state_dict"]) == \
+        record["parameter_checksums"][0]
+    assert [row["samples"] for row in checkpoint["history"]] == [64, 128]  # 2 ranks x 8 envs x 4 decisions
+
+    # Three ranks on one host resume a copy (in its own folder: a resume writes beside its checkpoint).
+    (tmp_path / "three").mkdir()
+    three_path = shutil.copy(run / "model_1.pt", tmp_path / "three" / "model_1.pt")
+    three = [sys.executable, "-m", "torch.distributed.run", "--standalone", "--nproc_per_node=3", "-m",
+             "ocean_warp.envs.training.train", *TINY, "--iterations", "1", "--resume", str(three_path),
+             "--dist-timeout", "60"]
+    (resumed_three,) = _run_tagged([three], cwd)
+    assert resumed_three.returncode == 0, resumed_three.stderr[-3000:]
+    after_three = read_checkpoint(tmp_path / "three" / "model_2.pt")
+    assert after_three["world_size"] == 3 and len(after_three["rank_rng_states"]) == 2
+    assert [row["samples"] for row in after_three["history"]] == [64, 128, 128 + 3 * 8 * 4]
+    assert json.loads((tmp_path / "three" / "distributed.json").read_text())["identical_parameters"]
+
+    # One host, one process: ocean-warp train --resume, from the iteration after the saved one.
+    assert training.main([*TINY, "--iterations", "1", "--resume", str(run / "model_1.pt")]) == 0
+    after = read_checkpoint(run / "model_2.pt")
+    assert after["iteration"] == 2 and after["world_size"] == 1 and "rank_rng_states" not in after
+    kept = ("iteration", "samples", "wall_time_s", "learning_rate")
+    assert [[row[key] for key in kept] for row in after["history"][:2]] == \
+        [[row[key] for key in kept] for row in checkpoint["history"]]
+    assert [row["samples"] for row in after["history"]] == [64, 128, 128 + 8 * 4]
+    assert not torch.equal(after["actor_state_dict"]["mlp.0.weight"], checkpoint["actor_state_dict"]["mlp.0.weight"])
+    assert len((run / "progress.csv").read_text().splitlines()) == 1 + 3  # header and iterations 0, 1, 2
