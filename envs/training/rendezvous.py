@@ -7,7 +7,8 @@ with its own ranks (``--gpus G``: G, else one), and the torchrun agents meet at 
 - without ``--node-rank``: torchrun's c10d rendezvous. The host whose name or address is HOST serves the
   rendezvous on PORT; torchrun numbers the hosts in the order of their descriptors, so global rank 0 (the one
   that writes every file) may be on any host. ``--nnodes MIN:MAX`` starts once MIN hosts have joined and takes
-  up to MAX.
+  up to MAX; a host that joins after the start makes torchrun restart every rank, which begins the training
+  anew in a new run folder (continue with ``--resume``), so give MIN:MAX only to hosts started together.
 - with ``--node-rank R``: torchrun's static rendezvous. Host R holds global ranks R G .. R G + G - 1, and
   host 0 (which must be HOST) holds rank 0 and writes the files.
 
