@@ -4,7 +4,10 @@
     torchrun --standalone --nproc_per_node=2 -m ocean_warp.envs.training.train --device cpu ...    # 2 CPU processes
 
 torchrun tells each process who it is through the environment: ``RANK`` (0 .. W-1 over every host),
-``LOCAL_RANK`` (its index on this host, which picks its GPU: ``cuda:LOCAL_RANK``) and ``WORLD_SIZE`` (W).
+``LOCAL_RANK`` (its index on this host, which picks its GPU: ``cuda:LOCAL_RANK``), ``WORLD_SIZE`` (W),
+``LOCAL_WORLD_SIZE`` (ranks on this host) and ``GROUP_RANK`` (this host's index). Several hosts run the same
+command and meet at a rendezvous (``ocean-warp train --nnodes N --rdzv-endpoint HOST:PORT``, :mod:`.rendezvous`);
+nothing else changes: the seed and the environments follow the global rank, the GPU the local one.
 Each rank simulates its own batch of ``num_envs`` environments; rsl-rl's PPO averages the gradients
 and the observation normalisers over the ranks (NCCL on GPUs, gloo on the CPU), so every rank holds
 the same networks after each update.
@@ -73,9 +76,11 @@ class RankContext:
     local_rank: int = 0
     """Index on this host: rank r uses ``cuda:local_rank``."""
     world_size: int = 1
+    node_rank: int = 0
+    """Index of this rank's host in the job (torchrun's ``GROUP_RANK``), 0 on a single host."""
 
     def __post_init__(self):
-        for name in ("rank", "local_rank", "world_size"):
+        for name in ("rank", "local_rank", "world_size", "node_rank"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int):
                 raise ValueError(f"RankContext.{name} must be a whole number, got {value!r}")
@@ -86,6 +91,9 @@ class RankContext:
         if not 0 <= self.local_rank < self.world_size:
             raise ValueError(f"LOCAL_RANK must be in 0..{self.world_size - 1} (WORLD_SIZE {self.world_size}), "
                              f"got {self.local_rank}")
+        if not 0 <= self.node_rank < self.world_size:
+            raise ValueError(f"GROUP_RANK (the host's index) must be in 0..{self.world_size - 1} "
+                             f"(WORLD_SIZE {self.world_size}), got {self.node_rank}")
 
     @classmethod
     def from_env(cls, environ: Mapping[str, str] | None = None) -> RankContext:
@@ -103,7 +111,7 @@ class RankContext:
                 raise ValueError(f"WORLD_SIZE is {world_size} but {' and '.join(missing)} is not set: start the "
                                  "ranks with torchrun (it sets RANK, LOCAL_RANK and WORLD_SIZE)")
         context = cls(rank=int_variable(environ, "RANK", 0), local_rank=int_variable(environ, "LOCAL_RANK", 0),
-                      world_size=world_size)
+                      world_size=world_size, node_rank=int_variable(environ, "GROUP_RANK", 0))
         local_world = environ.get("LOCAL_WORLD_SIZE")
         if local_world is not None and context.local_rank >= int_variable(environ, "LOCAL_WORLD_SIZE", 1):
             raise ValueError(f"LOCAL_RANK {context.local_rank} must be below LOCAL_WORLD_SIZE {local_world}")

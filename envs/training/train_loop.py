@@ -6,6 +6,7 @@ checkpoints that resume bit for bit, a sea-state curriculum, and the exported po
     ocean-warp train --task EBoatMission-v0 --device cuda --iterations 250 --run-name h100
     ocean-warp train --task EBoatMission-v0 --resume out/train/EBoatMission-v0/<date>_<name>/model_99.pt
     ocean-warp train --task EBoatMission-v0 --gpus 2 --minutes 5          # 2 GPUs, 4096 envs on each
+    ocean-warp train --gpus 4 --nnodes 2 --rdzv-endpoint node01:29500     # on each of 2 hosts: 8 GPUs
     torchrun --standalone --nproc_per_node=2 -m ocean_warp.envs.training.train --device cpu ...   # 2 CPU processes
 
 A run writes into ``out/train/<task>/<date>_<name>/`` (``--runs-root``, default ``out/train``):
@@ -22,8 +23,19 @@ Several ranks (torchrun; ``--gpus G`` starts it): each rank simulates ``--num-en
 own (rank r's are environments [r N, (r + 1) N) of one batch), rsl-rl averages the gradients and the
 normalisers, and one small collective per iteration sums the episode statistics (the curriculum moves
 on all ranks' episodes, alike everywhere) and stops every rank when one failed. Rank 0 alone writes, and
-adds ``distributed.json`` (every rank's checksum of its networks at the end, checked equal). See
-``ocean_warp.envs.training.distributed``.
+adds ``distributed.json`` (every rank's host, node rank and checksum of its networks at the end, checked
+equal). Several hosts: the same command on each with ``--nnodes N --rdzv-endpoint HOST:PORT`` (see
+``ocean_warp.envs.training.distributed`` and ``ocean_warp.envs.training.rendezvous``).
+
+Resuming with another number of ranks (hosts or GPUs) than wrote the checkpoint: the networks, optimiser,
+normalisers, curriculum and history are the job's, one copy (rank 0's, equal on every rank), and carry over
+whole. What belongs to a rank does not: ``--num-envs`` is per rank and taken from the command line, so the
+batch becomes (ranks now) x N environments, rank r's being environments [r N, (r + 1) N) of the one seeded
+batch restarted at the resumed iteration (the first ranks meet exactly the environments they would have met,
+added ranks new ones of the same batch, and the history's samples count on at the new size); rank 0 continues
+the saved random stream, and every other rank continues its own where as many ranks wrote the checkpoint, else
+takes a seed derived from rank 0's saved state and its rank (``distributed.derived_seed``): reproducible, but
+not the stream the uninterrupted run would have drawn.
 """
 
 from __future__ import annotations
@@ -71,8 +83,9 @@ from .distributed import (
     rank_device,
     rank_seed,
 )
-from .distributed_launch import gpus_problem, launch, torchrun_command, visible_gpus
+from .distributed_launch import gpus_problem, hosts_problem, job_label, launch, torchrun_command, visible_gpus
 from .policy_io import CheckpointError, export_policy, read_checkpoint, save_checkpoint
+from .rendezvous import rendezvous_from_options
 from .train_options import RUNS_ROOT, parser as _parser
 from ..interfaces.rsl_rl_env import RslRlVecEnv
 from ..parallel.sharded import ShardedSailingEnv
@@ -671,14 +684,17 @@ def _check_identical_parameters(ranks: Ranks, alg, run_dir: str, device: str, nu
         return None
     saved = alg.save()
     mine = parameter_checksum(saved["actor_state_dict"], saved["critic_state_dict"])
-    gathered = ranks.gather((mine, {"device": device, "host": host_name()}))
+    context = ranks.context
+    gathered = ranks.gather((mine, {"device": device, "host": host_name(), "node_rank": context.node_rank,
+                                    "local_rank": context.local_rank}))
     checksums = [checksum for checksum, _ in gathered]
     where = [place for _, place in gathered]
     identical = len(set(checksums)) == 1
-    if ranks.context.is_main:
+    if context.is_main:
         _write_json(os.path.join(run_dir, "distributed.json"),
-                    {"world_size": ranks.context.world_size, "backend": ranks.backend, "num_envs_per_rank": num_envs,
-                     "ranks": where, "parameter_checksums": checksums, "identical_parameters": identical})
+                    {"world_size": context.world_size, "nodes": len({place["node_rank"] for place in where}),
+                     "backend": ranks.backend, "num_envs_per_rank": num_envs, "ranks": where,
+                     "parameter_checksums": checksums, "identical_parameters": identical})
     if not identical:
         raise RankFailure(f"the ranks ended with different networks (checksums by rank: {', '.join(checksums)}); "
                           "they did not start alike or their updates were not averaged alike")
@@ -819,13 +835,22 @@ def main(argv: list[str] | None = None) -> int:
     if args.resume is None:
         checked_output_folder(parser, args.runs_root, "--runs-root")
     device = None if args.device == "auto" else args.device  # None: Warp's preferred device
+    try:
+        rendezvous = rendezvous_from_options(args.nnodes, args.node_rank, args.rdzv_endpoint, args.rdzv_id)
+    except ValueError as error:
+        return report_error(parser.prog, str(error))
+    if rendezvous is not None and (problem := hosts_problem(device, args.gpus)) is not None:
+        return report_error(parser.prog, problem)
     if args.gpus is not None:
         problem = gpus_problem(args.gpus, device, visible_gpus())
         if problem is not None:
             return report_error(parser.prog, problem)
-        if int(args.gpus) > 1:
-            return launch(torchrun_command(argv, int(args.gpus)), int(args.gpus))
+        if int(args.gpus) > 1 or rendezvous is not None:
+            gpus = int(args.gpus)
+            return launch(torchrun_command(argv, gpus, rendezvous=rendezvous), job_label(gpus, True, rendezvous))
         device = "cuda"
+    elif rendezvous is not None:  # one rank on this host, on --device
+        return launch(torchrun_command(argv, 1, rendezvous=rendezvous, on_gpus=False), job_label(1, False, rendezvous))
     try:
         context = RankContext.from_env()
     except ValueError as error:

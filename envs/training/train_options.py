@@ -25,7 +25,8 @@ def parser() -> argparse.ArgumentParser:
                         long_help_from="ocean_warp.envs.training.train_loop",
                         examples=("ocean-warp train --minutes 20",
                                   "ocean-warp train --task EBoatWaypoint-v0 --device cpu --workers 2 --num-envs 512",
-                                  "ocean-warp train --resume out/train/EBoatMission-v0/<date>_<name>/model_99.pt"))
+                                  "ocean-warp train --resume out/train/EBoatMission-v0/<date>_<name>/model_99.pt",
+                                  "ocean-warp train --gpus 4 --nnodes 2 --rdzv-endpoint node01:29500  # on both hosts"))
     parser.add_argument("--task", default=DEFAULT_TASK, metavar="ID",
                         help=f"the task to train on: {', '.join(TASK_IDS)}, with or without 'ocean_warp/' "
                              f"(default {DEFAULT_TASK})")
@@ -51,10 +52,22 @@ def parser() -> argparse.ArgumentParser:
                         help="CPU only: simulate the environments in this many processes, one core each "
                         "(default 1: in this process)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
-    ranks = parser.add_argument_group("several GPUs (torchrun; see ocean_warp.envs.training.distributed)")
+    ranks = parser.add_argument_group("several GPUs and hosts (torchrun; see ocean_warp.envs.training.distributed)")
     ranks.add_argument("--gpus", default=None, metavar="G",
                        help="train one policy on G GPUs of this host: starts torchrun with G ranks, each with "
-                       "--num-envs environments on its own GPU (default: this process, one device)")
+                       "--num-envs environments on its own GPU (default: this process, one device); with --nnodes, "
+                       "G GPUs on every host")
+    ranks.add_argument("--nnodes", default=None, metavar="N|MIN:MAX",
+                       help="train on N hosts (or from MIN to MAX): run this same command on every host; each starts "
+                       "torchrun with its ranks (--gpus G, else one on --device) and they meet at --rdzv-endpoint")
+    ranks.add_argument("--node-rank", type=int, default=None, metavar="R",
+                       help="with --nnodes N: this host's index, 0..N-1, so that host 0 (the --rdzv-endpoint host) "
+                       "holds rank 0, which writes the files (default: torchrun's c10d rendezvous numbers the hosts)")
+    ranks.add_argument("--rdzv-endpoint", default=None, metavar="HOST:PORT",
+                       help="with --nnodes: where the hosts meet, one of them and a free port on it")
+    ranks.add_argument("--rdzv-id", default=None, metavar="ID",
+                       help="with --nnodes: the job's name at the rendezvous, the same on every host (default "
+                       "ocean-warp-train; give concurrent jobs their own, e.g. $SLURM_JOB_ID)")
     ranks.add_argument("--dist-timeout", type=float, default=DEFAULT_TIMEOUT_S, metavar="SECONDS",
                        help="with several ranks: the longest a rank waits for the others before the job stops")
     return parser

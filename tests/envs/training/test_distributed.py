@@ -136,9 +136,9 @@ def test_train_command_gpus_errors_and_launch(monkeypatch, capsys):
         assert err.count("\n") == 1 and message in err and err.startswith("ocean-warp train: "), err
     launched = []
     monkeypatch.setattr(training, "visible_gpus", lambda: 2)
-    monkeypatch.setattr(training, "launch", lambda command, gpus: launched.append((command, gpus)) or 7)
+    monkeypatch.setattr(training, "launch", lambda command, job: launched.append((command, job)) or 7)
     assert training.main(["--gpus", "2", "--iterations", "3"]) == 7
-    assert launched == [(torchrun_command(["--iterations", "3"], 2), 2)]
+    assert launched == [(torchrun_command(["--iterations", "3"], 2), "training on 2 GPUs")]
 
 
 SUMMARY = """torch.distributed.elastic.multiprocessing.errors.ChildFailedError:
@@ -161,10 +161,10 @@ Root Cause (first observed failure):
 
 
 def test_a_failed_launch_ends_with_one_line_naming_the_rank(capsys):
-    assert "rank 1 exited first, killed by signal 9 (SIGKILL)" in describe_failure(SUMMARY, 1, 2)
-    assert "torchrun exited with status 3" in describe_failure("no summary", 3, 2)
+    assert "rank 1 exited first, killed by signal 9 (SIGKILL)" in describe_failure(SUMMARY, 1, "training on 2 GPUs")
+    assert "torchrun exited with status 3" in describe_failure("no summary", 3, "training on 2 GPUs")
     command = [sys.executable, "-c", f"import sys; sys.stderr.write({SUMMARY!r}); sys.exit(1)"]
-    assert launch(command, 2) == 1
+    assert launch(command, "training on 2 GPUs") == 1
     err = capsys.readouterr().err
     assert err.rstrip().splitlines()[-1] == ("ocean-warp train: training on 2 GPUs failed: rank 1 exited first, "
                                              "killed by signal 9 (SIGKILL), and torchrun stopped the others; "
@@ -198,7 +198,7 @@ def test_ctrl_c_is_passed_to_torchrun_and_raised_once_it_has_exited(tmp_path):
     try:
         threading.Thread(target=interrupt_when_ready, daemon=True).start()
         with pytest.raises(KeyboardInterrupt):
-            launch([sys.executable, "-c", child], 2)
+            launch([sys.executable, "-c", child], "training on 2 GPUs")
     finally:
         signal.signal(signal.SIGINT, previous)
     assert caught.read_text() == "SIGINT "  # forwarded (the child would otherwise sleep its 60 s and write nothing)
@@ -222,7 +222,7 @@ def test_launch_passes_sigterm_on_to_torchrun(tmp_path):
         exit_cleanly_on_sigterm(["train"])
         threading.Thread(target=terminate_when_ready, daemon=True).start()
         with pytest.raises(Terminated) as raised:
-            launch([sys.executable, "-c", child], 2)
+            launch([sys.executable, "-c", child], "training on 2 GPUs")
     finally:
         signal.signal(signal.SIGTERM, previous)
     assert raised.value.code == 143 and caught.read_text() == "SIGTERM "
@@ -321,7 +321,7 @@ def test_a_failing_rank_stops_the_whole_job(tmp_path, fault):
     elif fault == "kill":
         # Usually torchrun sees the killed rank 1 first; under load, rank 0's collective can abort on the
         # vanished peer before torchrun polls rank 1 (seen once in a full CPU run), and then rank 0 is first.
-        said = describe_failure(err, result.returncode, 2)
+        said = describe_failure(err, result.returncode, "training on 2 GPUs")
         assert ("rank 1 exited first, killed by signal 9 (SIGKILL)" in said
                 or "rank 0 exited first, killed by signal 6 (SIGABRT)" in said), said
     else:
