@@ -1,0 +1,161 @@
+"""Line-of-sight guidance through gates, clear of buoys, for a batch of WAM-Vs: the baseline of VRX's follow-path
+task.
+
+The current gate is ``buffers.target``: its centre's world x, y [m] and the heading h it is passed in [rad]; its
+axis is the line through its centre along h, square to the line between its buoys. With (along, across) the
+boat's offset from the centre along the axis and to port of it:
+
+- **Approach along the axis** (lookahead-based LOS, Fossen, "Handbook of Marine Craft Hydrodynamics and Motion
+  Control", 2011, ch. 10): course chi = h - atan(across / ``lookahead``), which meets the axis at up to 90 deg
+  and runs along it, so the boat crosses the gate square to its line, at its middle. A boat beside the gate or
+  past its line outside it (along > -``lookahead`` and |across| beyond ``gate_margin`` x half the task's
+  ``gate_width``) first heads for the point ``lookahead`` before the centre on the axis.
+- **Clear of the buoys** (collision cones, the velocity-obstacle idea for a boat that keeps its speed): each buoy
+  of ``buffers.obstacles`` within ``detection_range``, grown by ``clearance`` to a circle of radius R, blocks the
+  courses within asin(min(R / D, 1)) of its bearing (D its distance). A course inside a cone moves to the nearer
+  edge of it, away from the buoy's centre; the buoys are taken nearest first, in ``passes`` passes.
+- A PD on the heading error for the yaw moment, a PI on the surge speed toward ``cruise_speed`` x
+  max(cos(heading error), 0); the thrust allocated to fixed (A = 2) or azimuth (A = 4, straight aft) thrusters.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import torch
+
+from ocean_warp.validation import require_int_in_range, require_non_negative, require_positive
+
+from .thrust_allocation import ThrusterLayout, azimuth_thrust, differential_thrust, wrap_angle, yaw_of
+
+__all__ = ["GateGuidanceConfig", "GateGuidanceController", "clear_course"]
+
+
+@dataclasses.dataclass(frozen=True)
+class GateGuidanceConfig:
+    """Gains and distances of :class:`GateGuidanceController` (tuned on ``ocean_warp.wamv``'s WAM-V)."""
+
+    lookahead: float = 8.0
+    """Lookahead distance along the gate's axis [m]."""
+    clearance: float = 2.5
+    """Gap kept between a buoy's surface and the boat's centre [m]: the WAM-V's contact capsule is 1.3 m in
+    radius, the rest is room to turn."""
+    detection_range: float = 20.0
+    """Buoys farther than this are not avoided [m]."""
+    gate_margin: float = 0.7
+    """A boat beyond this fraction of the gate's half width off its axis, near or past its line, goes round to
+    the axis first."""
+    passes: int = 2
+    """Passes over the buoys (a course pushed out of one cone into another is moved again)."""
+    cruise_speed: float = 1.5
+    """Surge speed [m/s]."""
+    speed_p: float = 300.0
+    """Surge force per m/s of speed error [N s/m]."""
+    speed_i: float = 60.0
+    """Surge force per m of integrated speed error [N/m]."""
+    heading_p: float = 800.0
+    """Yaw moment per radian of heading error [N m/rad]."""
+    heading_d: float = 400.0
+    """Yaw moment per rad/s of yaw rate [N m s/rad]."""
+    integral_limit: float = 150.0
+    """The speed integral's largest output [N]."""
+    thrusters: ThrusterLayout = ThrusterLayout()
+
+    def __post_init__(self):
+        owner = "GateGuidanceConfig"
+        for name in ("lookahead", "detection_range", "gate_margin", "cruise_speed", "speed_p", "heading_p",
+                     "heading_d"):
+            require_positive(owner, name, getattr(self, name))
+        for name in ("clearance", "speed_i", "integral_limit"):
+            require_non_negative(owner, name, getattr(self, name))
+        object.__setattr__(self, "passes", require_int_in_range(owner, "passes", self.passes, 1, 16))
+        if not isinstance(self.thrusters, ThrusterLayout):
+            raise ValueError(f"{owner}.thrusters must be a ThrusterLayout, got {self.thrusters!r}")
+
+
+def clear_course(course: torch.Tensor, position: torch.Tensor, buoys: torch.Tensor, clearance: float,
+                 detection_range: float, passes: int = 1) -> torch.Tensor:
+    """``course`` (N,) [rad] moved out of every buoy's collision cone (the module's docstring).
+
+    Args:
+        position: (N, 2) the boats' world x, y [m].
+        buoys: (N, K, 4) each boat's buoys: world x, y [m], radius [m], kind (0: an empty row, skipped).
+        clearance: gap kept from a buoy's surface [m]; detection_range: buoys farther are skipped [m].
+    """
+    rel = buoys[:, :, :2] - position[:, None, :]
+    distance = torch.linalg.vector_norm(rel, dim=2)
+    bearing = torch.atan2(rel[:, :, 1], rel[:, :, 0])
+    grown = buoys[:, :, 2] + clearance
+    half_angle = torch.asin((grown / distance.clamp(min=1e-6)).clamp(max=1.0))
+    active = (buoys[:, :, 3] > 0.0) & (distance < detection_range)
+    order = torch.argsort(torch.where(active, distance, float("inf")), dim=1)
+    for _ in range(passes):
+        for k in range(buoys.shape[1]):
+            pick = order[:, k: k + 1]
+            b, half, on = (t.gather(1, pick)[:, 0] for t in (bearing, half_angle, active))
+            offset = wrap_angle(course - b)
+            inside = on & (offset.abs() < half)
+            side = torch.where(offset >= 0.0, 1.0, -1.0)
+            course = torch.where(inside, b + side * half, course)
+    return wrap_angle(course)
+
+
+class GateGuidanceController:
+    """LOS guidance of every boat of a batch through its current gate, clear of the buoys (the module's docstring
+    gives the law); the evaluation's ``Controller``: reads ``env.buffers`` (``target``, ``obstacles``, the
+    boats' state) and the task's ``gate_width`` [m], writes ``env.buffers.actions`` (N, A), A = 2 or 4.
+    ``course`` holds each boat's course after the last :meth:`act` [rad]."""
+
+    name = "gate-guidance"
+
+    def __init__(self, config: GateGuidanceConfig = GateGuidanceConfig()):
+        if not isinstance(config, GateGuidanceConfig):
+            raise ValueError(f"GateGuidanceController: config must be a GateGuidanceConfig, got {config!r}")
+        self.config = config
+        self.course: torch.Tensor | None = None
+        self._speed_integral: torch.Tensor | None = None
+
+    def reset(self, env) -> None:
+        if env.num_actions not in (2, 4):
+            raise ValueError(f"GateGuidanceController: the task's actions must be 2 (fixed thrusters) or 4 "
+                             f"(azimuth thrusters), got {env.num_actions}")
+        self._speed_integral = torch.zeros(env.num_envs, device=env.torch_device)
+        self.course = torch.zeros(env.num_envs, device=env.torch_device)
+
+    def guidance(self, env) -> torch.Tensor:
+        """(N,) each boat's course [rad]: along its gate's axis, then clear of its buoys."""
+        c, b = self.config, env.buffers
+        gate = b.target[:, :3]
+        position = b.position[:, :2]
+        cos_h, sin_h = torch.cos(gate[:, 2]), torch.sin(gate[:, 2])
+        rel = position - gate[:, :2]
+        along = cos_h * rel[:, 0] + sin_h * rel[:, 1]
+        across = -sin_h * rel[:, 0] + cos_h * rel[:, 1]
+        course = gate[:, 2] - torch.atan(across / c.lookahead)
+        stage = gate[:, :2] - c.lookahead * torch.stack([cos_h, sin_h], dim=1) - position
+        outside = (along > -c.lookahead) & (across.abs() > c.gate_margin * 0.5 * float(env.task.gate_width))
+        course = torch.where(outside, torch.atan2(stage[:, 1], stage[:, 0]), course)
+        buoys = b.obstacles
+        if buoys.shape[1] == 0:
+            return wrap_angle(course)
+        world = torch.cat([buoys[:, :, :2] + b.origin[:, None, :2], buoys[:, :, 2:]], dim=2)
+        return clear_course(course, position, world, c.clearance, c.detection_range, c.passes)
+
+    def act(self, env) -> None:
+        c, b = self.config, env.buffers
+        dt = float(env.decision_period)
+        self._speed_integral.masked_fill_(b.done, 0.0)
+        self.course = self.guidance(env)
+        yaw = yaw_of(b.orientation)
+        heading_error = wrap_angle(self.course - yaw)
+        u, r = b.velocity[:, 0], b.velocity[:, 5]
+        moment = c.heading_p * heading_error - c.heading_d * r
+        speed_error = c.cruise_speed * torch.cos(heading_error).clamp(min=0.0) - u
+        bound = c.integral_limit / c.speed_i if c.speed_i > 0.0 else 0.0
+        self._speed_integral = (self._speed_integral + speed_error * dt).clamp(-bound, bound)
+        surge = c.speed_p * speed_error + c.speed_i * self._speed_integral
+        if env.num_actions == 4:
+            actions = azimuth_thrust(surge, torch.zeros_like(surge), moment, c.thrusters)
+        else:
+            actions = differential_thrust(surge, moment, c.thrusters)
+        b.actions[:, : actions.shape[1]].copy_(actions)
