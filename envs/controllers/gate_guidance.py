@@ -12,15 +12,17 @@ boat's offset from the centre along the axis and to port of it:
   ``gate_width``) first heads for the point ``lookahead`` before the centre on the axis.
 - **Clear of the buoys** (collision cones, the velocity-obstacle idea for a boat that keeps its speed): each buoy
   of ``buffers.obstacles`` within ``detection_range``, grown by ``clearance`` to a circle of radius R, blocks the
-  courses within asin(min(R / D, 1)) of its bearing (D its distance). A course inside a cone moves to the nearer
+  courses within asin(R / D) of its bearing (D its distance; within the circle, pi/2 (1 + (R - D) / R)). A course inside a cone moves to the nearer
   edge of it, away from the buoy's centre; the buoys are taken nearest first, in ``passes`` passes.
-- A PD on the heading error for the yaw moment, a PI on the surge speed toward ``cruise_speed`` x
+- The heading reference is the course less the drift angle atan(v / u) (Fossen's crab-angle compensation: the
+  course is over ground), a PD on its error for the yaw moment, a PI on the surge speed toward ``cruise_speed`` x
   max(cos(heading error), 0); the thrust allocated to fixed (A = 2) or azimuth (A = 4, straight aft) thrusters.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import torch
 
@@ -37,9 +39,9 @@ class GateGuidanceConfig:
 
     lookahead: float = 8.0
     """Lookahead distance along the gate's axis [m]."""
-    clearance: float = 2.5
-    """Gap kept between a buoy's surface and the boat's centre [m]: the WAM-V's contact capsule is 1.3 m in
-    radius, the rest is room to turn."""
+    clearance: float = 4.5
+    """Gap kept between a buoy's surface and the boat's centre [m]: the WAM-V's contact capsule reaches 3.7 m
+    ahead and astern of it, and wind pushes it aside while it turns."""
     detection_range: float = 20.0
     """Buoys farther than this are not avoided [m]."""
     gate_margin: float = 0.7
@@ -47,7 +49,7 @@ class GateGuidanceConfig:
     the axis first."""
     passes: int = 2
     """Passes over the buoys (a course pushed out of one cone into another is moved again)."""
-    cruise_speed: float = 1.5
+    cruise_speed: float = 1.0
     """Surge speed [m/s]."""
     speed_p: float = 300.0
     """Surge force per m/s of speed error [N s/m]."""
@@ -59,12 +61,16 @@ class GateGuidanceConfig:
     """Yaw moment per rad/s of yaw rate [N m s/rad]."""
     integral_limit: float = 150.0
     """The speed integral's largest output [N]."""
+    drift_speed: float = 0.5
+    """The drift angle atan(v / u) is taken with u at least this [m/s] (it means nothing at rest)."""
+    drift_limit: float = 0.6
+    """Largest drift angle the heading makes up for [rad]."""
     thrusters: ThrusterLayout = ThrusterLayout()
 
     def __post_init__(self):
         owner = "GateGuidanceConfig"
         for name in ("lookahead", "detection_range", "gate_margin", "cruise_speed", "speed_p", "heading_p",
-                     "heading_d"):
+                     "heading_d", "drift_speed", "drift_limit"):
             require_positive(owner, name, getattr(self, name))
         for name in ("clearance", "speed_i", "integral_limit"):
             require_non_negative(owner, name, getattr(self, name))
@@ -86,7 +92,9 @@ def clear_course(course: torch.Tensor, position: torch.Tensor, buoys: torch.Tens
     distance = torch.linalg.vector_norm(rel, dim=2)
     bearing = torch.atan2(rel[:, :, 1], rel[:, :, 0])
     grown = buoys[:, :, 2] + clearance
-    half_angle = torch.asin((grown / distance.clamp(min=1e-6)).clamp(max=1.0))
+    # inside the grown circle the cone widens past 90 deg, to 180 deg at the centre: the course leads away
+    half_angle = torch.asin((grown / distance.clamp(min=1e-6)).clamp(max=1.0)) + \
+        (0.5 * math.pi) * ((grown - distance) / grown.clamp(min=1e-6)).clamp(min=0.0)
     active = (buoys[:, :, 3] > 0.0) & (distance < detection_range)
     order = torch.argsort(torch.where(active, distance, float("inf")), dim=1)
     for _ in range(passes):
@@ -147,8 +155,10 @@ class GateGuidanceController:
         self._speed_integral.masked_fill_(b.done, 0.0)
         self.course = self.guidance(env)
         yaw = yaw_of(b.orientation)
-        heading_error = wrap_angle(self.course - yaw)
-        u, r = b.velocity[:, 0], b.velocity[:, 5]
+        u, v, r = b.velocity[:, 0], b.velocity[:, 1], b.velocity[:, 5]
+        # the course is over ground: the heading leads it by the drift angle (wind and waves push the boat aside)
+        drift = torch.atan2(v, u.clamp(min=c.drift_speed)).clamp(-c.drift_limit, c.drift_limit)
+        heading_error = wrap_angle(self.course - drift - yaw)
         moment = c.heading_p * heading_error - c.heading_d * r
         speed_error = c.cruise_speed * torch.cos(heading_error).clamp(min=0.0) - u
         bound = c.integral_limit / c.speed_i if c.speed_i > 0.0 else 0.0
