@@ -12,8 +12,10 @@ boat's offset from the centre along the axis and to port of it:
   ``gate_width``) first heads for the point ``lookahead`` before the centre on the axis.
 - **Clear of the buoys** (collision cones, the velocity-obstacle idea for a boat that keeps its speed): each buoy
   of ``buffers.obstacles`` within ``detection_range``, grown by ``clearance`` to a circle of radius R, blocks the
-  courses within asin(R / D) of its bearing (D its distance; within the circle, pi/2 (1 + (R - D) / R)). A course inside a cone moves to the nearer
-  edge of it, away from the buoy's centre; the buoys are taken nearest first, in ``passes`` passes.
+  courses within asin(R / D) of its bearing (D its distance; within the circle, pi/2 (1 + (R - D) / R)). Of the
+  LOS course and the cones' edges, the boat takes the one clear of every cone nearest the LOS course, each radian
+  of turn from its heading counting ``turn_weight`` more (so it keeps to the side it chose); where every one is
+  blocked, straight away from the nearest buoy.
 - The heading reference is the course less the drift angle atan(v / u) (Fossen's crab-angle compensation: the
   course is over ground), a PD on its error for the yaw moment, a PI on the surge speed toward ``cruise_speed`` x
   max(cos(heading error), 0); the thrust allocated to fixed (A = 2) or azimuth (A = 4, straight aft) thrusters.
@@ -26,7 +28,7 @@ import math
 
 import torch
 
-from ocean_warp.validation import require_int_in_range, require_non_negative, require_positive
+from ocean_warp.validation import require_non_negative, require_positive
 
 from .thrust_allocation import ThrusterLayout, azimuth_thrust, differential_thrust, wrap_angle, yaw_of
 
@@ -47,8 +49,9 @@ class GateGuidanceConfig:
     gate_margin: float = 0.7
     """A boat beyond this fraction of the gate's half width off its axis, near or past its line, goes round to
     the axis first."""
-    passes: int = 2
-    """Passes over the buoys (a course pushed out of one cone into another is moved again)."""
+    turn_weight: float = 0.5
+    """Of the courses clear of every cone, the one nearest the LOS course is taken, each radian of turn from the
+    heading counting this much more (the boat keeps the side it turned to)."""
     cruise_speed: float = 1.0
     """Surge speed [m/s]."""
     speed_p: float = 300.0
@@ -72,21 +75,23 @@ class GateGuidanceConfig:
         for name in ("lookahead", "detection_range", "gate_margin", "cruise_speed", "speed_p", "heading_p",
                      "heading_d", "drift_speed", "drift_limit"):
             require_positive(owner, name, getattr(self, name))
-        for name in ("clearance", "speed_i", "integral_limit"):
+        for name in ("clearance", "speed_i", "integral_limit", "turn_weight"):
             require_non_negative(owner, name, getattr(self, name))
-        object.__setattr__(self, "passes", require_int_in_range(owner, "passes", self.passes, 1, 16))
         if not isinstance(self.thrusters, ThrusterLayout):
             raise ValueError(f"{owner}.thrusters must be a ThrusterLayout, got {self.thrusters!r}")
 
 
 def clear_course(course: torch.Tensor, position: torch.Tensor, buoys: torch.Tensor, clearance: float,
-                 detection_range: float, passes: int = 1) -> torch.Tensor:
-    """``course`` (N,) [rad] moved out of every buoy's collision cone (the module's docstring).
+                 detection_range: float, heading: torch.Tensor | None = None, turn_weight: float = 0.0) -> torch.Tensor:
+    """``course`` (N,) [rad] moved out of every buoy's collision cone (the module's docstring): of the course and
+    the cones' edges, the one outside every cone that minimises |its angle to ``course``| + ``turn_weight`` x |its
+    angle to ``heading``| [rad]; where none is outside, straight away from the nearest buoy.
 
     Args:
         position: (N, 2) the boats' world x, y [m].
         buoys: (N, K, 4) each boat's buoys: world x, y [m], radius [m], kind (0: an empty row, skipped).
         clearance: gap kept from a buoy's surface [m]; detection_range: buoys farther are skipped [m].
+        heading: (N,) the boats' headings [rad] (None: ``course``, no cost of turning).
     """
     rel = buoys[:, :, :2] - position[:, None, :]
     distance = torch.linalg.vector_norm(rel, dim=2)
@@ -96,16 +101,19 @@ def clear_course(course: torch.Tensor, position: torch.Tensor, buoys: torch.Tens
     half_angle = torch.asin((grown / distance.clamp(min=1e-6)).clamp(max=1.0)) + \
         (0.5 * math.pi) * ((grown - distance) / grown.clamp(min=1e-6)).clamp(min=0.0)
     active = (buoys[:, :, 3] > 0.0) & (distance < detection_range)
-    order = torch.argsort(torch.where(active, distance, float("inf")), dim=1)
-    for _ in range(passes):
-        for k in range(buoys.shape[1]):
-            pick = order[:, k: k + 1]
-            b, half, on = (t.gather(1, pick)[:, 0] for t in (bearing, half_angle, active))
-            offset = wrap_angle(course - b)
-            inside = on & (offset.abs() < half)
-            side = torch.where(offset >= 0.0, 1.0, -1.0)
-            course = torch.where(inside, b + side * half, course)
-    return wrap_angle(course)
+    half_angle = torch.where(active, half_angle, 0.0)
+    # candidates: the course itself and both edges of every cone, nudged just outside it
+    edge = half_angle + 1e-4
+    candidates = torch.cat([course[:, None], bearing + edge, bearing - edge], dim=1)
+    inside = (wrap_angle(candidates[:, :, None] - bearing[:, None, :]).abs() < half_angle[:, None, :]).any(dim=2)
+    heading = course if heading is None else heading
+    cost = wrap_angle(candidates - course[:, None]).abs() + turn_weight * wrap_angle(
+        candidates - heading[:, None]).abs()
+    best = torch.argmin(torch.where(inside, float("inf"), cost), dim=1, keepdim=True)
+    chosen = candidates.gather(1, best)[:, 0]
+    nearest = torch.argmin(torch.where(active, distance, float("inf")), dim=1, keepdim=True)
+    away = bearing.gather(1, nearest)[:, 0] + math.pi
+    return wrap_angle(torch.where(inside.all(dim=1), away, chosen))
 
 
 class GateGuidanceController:
@@ -147,7 +155,8 @@ class GateGuidanceController:
         if buoys.shape[1] == 0:
             return wrap_angle(course)
         world = torch.cat([buoys[:, :, :2] + b.origin[:, None, :2], buoys[:, :, 2:]], dim=2)
-        return clear_course(course, position, world, c.clearance, c.detection_range, c.passes)
+        return clear_course(course, position, world, c.clearance, c.detection_range, yaw_of(b.orientation),
+                            c.turn_weight)
 
     def act(self, env) -> None:
         c, b = self.config, env.buffers
