@@ -25,6 +25,9 @@ from ocean_warp.envs.evaluation.presets import evaluation_task
 from ocean_warp.envs.evaluation.rollout import sail_mission
 
 TASKS = ("WamvStationKeeping-v0", "WamvWayfinding-v0", "WamvFollowPath-v0")
+SCORES = {"WamvStationKeeping-v0": "mean pose error d + 0.75^d |heading error| over the run [m], lower is better",
+          "WamvWayfinding-v0": "mean over the goals of the least pose error reached [m], lower is better",
+          "WamvFollowPath-v0": "points: 10 a gate passed in order plus bonuses, 3 off a collision; higher is better"}
 
 
 def compare(task_id: str, runs: int, *, device: str = "cpu", seed: int = 0, sea_state: float | None = None,
@@ -43,7 +46,7 @@ def compare(task_id: str, runs: int, *, device: str = "cpu", seed: int = 0, sea_
         print(f"{task_id:24s} {result.name:22s} VRX score mean {rows[-1]['vrx_score_mean']:7.2f} median "
               f"{rows[-1]['vrx_score_median']:7.2f}, completed {rows[-1]['completed']}/{runs}, collisions "
               f"{rows[-1]['collisions']}", flush=True)
-    return {"task": task_id, "episode_time_s": config.episode_time,
+    return {"task": task_id, "vrx_score": SCORES[task_id], "episode_time_s": config.episode_time,
             "sea_state_m": config.simulator.ocean.significant_wave_height, "wind_m_s": list(config.start.wind_speed),
             "rows": rows}
 

@@ -19,6 +19,10 @@ boat's offset from the centre along the axis and to port of it:
 - The heading reference is the course less the drift angle atan(v / u) (Fossen's crab-angle compensation: the
   course is over ground), a PD on its error for the yaw moment, a PI on the surge speed toward ``cruise_speed`` x
   max(cos(heading error), 0); the thrust allocated to fixed (A = 2) or azimuth (A = 4, straight aft) thrusters.
+
+Measured (``benchmarks/studies/wamv_baselines.py``, 12 seeded 300 s runs of WamvFollowPath-v0 on the CPU,
+2026-11-28): 37.8 points, 9 runs of 12 through every gate, 2 collisions; the LOS guidance along the legs 0.6
+points, 12 collisions.
 """
 
 from __future__ import annotations
@@ -30,7 +34,7 @@ import torch
 
 from ocean_warp.validation import require_non_negative, require_positive
 
-from .thrust_allocation import ThrusterLayout, azimuth_thrust, differential_thrust, wrap_angle, yaw_of
+from .thrust_allocation import ThrusterLayout, aft_thrust, integrate_clipped, wrap_angle, yaw_of
 
 __all__ = ["GateGuidanceConfig", "GateGuidanceController", "clear_course"]
 
@@ -170,11 +174,7 @@ class GateGuidanceController:
         heading_error = wrap_angle(self.course - drift - yaw)
         moment = c.heading_p * heading_error - c.heading_d * r
         speed_error = c.cruise_speed * torch.cos(heading_error).clamp(min=0.0) - u
-        bound = c.integral_limit / c.speed_i if c.speed_i > 0.0 else 0.0
-        self._speed_integral = (self._speed_integral + speed_error * dt).clamp(-bound, bound)
+        self._speed_integral = integrate_clipped(self._speed_integral, speed_error, c.speed_i, c.integral_limit, dt)
         surge = c.speed_p * speed_error + c.speed_i * self._speed_integral
-        if env.num_actions == 4:
-            actions = azimuth_thrust(surge, torch.zeros_like(surge), moment, c.thrusters)
-        else:
-            actions = differential_thrust(surge, moment, c.thrusters)
+        actions = aft_thrust(surge, moment, env.num_actions, c.thrusters)
         b.actions[:, : actions.shape[1]].copy_(actions)
