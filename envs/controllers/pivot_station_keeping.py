@@ -164,15 +164,16 @@ class PivotStationKeepingController:
         speed_ref = torch.minimum(c.approach_gain * distance, top) * torch.cos(heading_error).clamp(min=0.0)
         speed_ref = torch.where(astern, -speed_ref, speed_ref)
         speed_error = speed_ref - u
-        s["speed"] = torch.where(transit, integrate_clipped(s["speed"], speed_error, c.speed_i, c.integral_limit, dt), 0.0)
+        speed_integral = integrate_clipped(s["speed"], speed_error, c.speed_i, c.integral_limit, dt)
+        s["speed"] = torch.where(transit, speed_integral, 0.0)
         approach_surge = c.speed_p * speed_error + c.speed_i * s["speed"]
 
         # holding: PID on the offset ahead and on the goal's heading
         s["surge"] = torch.where(holding, integrate_clipped(s["surge"], ahead, c.surge_i, c.integral_limit, dt), 0.0)
         hold_surge = c.surge_p * ahead + c.surge_i * s["surge"] - c.surge_d * u
         surge = torch.where(holding, hold_surge, approach_surge)
-        s["heading"] = torch.where(holding, integrate_clipped(s["heading"], heading_error, c.heading_i, c.integral_limit,
-                                                       dt), 0.0)
+        heading_integral = integrate_clipped(s["heading"], heading_error, c.heading_i, c.integral_limit, dt)
+        s["heading"] = torch.where(holding, heading_integral, 0.0)
         moment = c.heading_p * heading_error + c.heading_i * s["heading"] - c.heading_d * r
 
         actions = aft_thrust(surge, moment, env.num_actions, c.thrusters)

@@ -189,7 +189,8 @@ class StationKeepingController:
         speed_ref = (c.approach_gain * to_go).clamp(max=c.transit_speed)
         speed_ref = speed_ref * torch.cos(heading_error).clamp(min=0.0)
         speed_error = speed_ref - u
-        s["speed"] = torch.where(holding, 0.0, integrate_clipped(s["speed"], speed_error, c.speed_i, c.integral_limit, dt))
+        speed_integral = integrate_clipped(s["speed"], speed_error, c.speed_i, c.integral_limit, dt)
+        s["speed"] = torch.where(holding, 0.0, speed_integral)
         transit_surge = c.speed_p * speed_error + c.speed_i * s["speed"]
 
         # holding: PID on the offset ahead (and to port)
@@ -197,8 +198,8 @@ class StationKeepingController:
         hold_surge = c.surge_p * ahead + c.surge_i * s["surge"] - c.surge_d * u
         surge = torch.where(holding, hold_surge, transit_surge)
 
-        s["heading"] = torch.where(holding, integrate_clipped(s["heading"], heading_error, c.heading_i, c.integral_limit,
-                                                       dt), 0.0)
+        heading_integral = integrate_clipped(s["heading"], heading_error, c.heading_i, c.integral_limit, dt)
+        s["heading"] = torch.where(holding, heading_integral, 0.0)
         moment = c.heading_p * heading_error + c.heading_i * s["heading"] - c.heading_d * r
 
         if azimuth:

@@ -11,8 +11,8 @@ import torch
 
 from ocean_warp.validation import require_in_range, require_positive
 
-__all__ = ["ThrusterLayout", "yaw_of", "wrap_angle", "body_error", "differential_thrust", "azimuth_thrust", "aft_thrust",
-           "integrate_clipped"]
+__all__ = ["ThrusterLayout", "yaw_of", "wrap_angle", "body_error", "differential_thrust", "azimuth_thrust",
+           "aft_thrust", "integrate_clipped"]
 
 
 @dataclasses.dataclass(frozen=True)
