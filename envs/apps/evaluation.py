@@ -27,7 +27,10 @@ The policy is --policy PATH, else the task's shipped policy (``ocean_warp.envs.t
 that has none (EBoatWaypointPlus-v0) eval says so in one line and sails the autopilot alone. The autopilot
 (named "autopilot" in every table) is --autopilot line (default), the line follower of Jaulin and Le Bars
 (``ocean_warp.envs.controllers.line_following``), or --autopilot legacy, the line-of-sight autopilot
-(``ocean_warp.envs.controllers.sailing_autopilot``). On a task without propeller (EBoatMissionSail-v0:
+(``ocean_warp.envs.controllers.sailing_autopilot``). On the WAM-V's tasks the baseline is named as it is:
+by default ``pivot-station-keeping`` (station keeping and wayfinding: transit, back and fill, holding) and
+``gate-guidance`` (the path: LOS through the gates clear of the buoys); with --autopilot legacy the earlier
+``pid-station-keeping`` and ``los-guidance``. On a task without propeller (EBoatMissionSail-v0:
 ``TaskConfig.propeller`` False) either sails without motor assist (the legacy one with
 ``AutopilotConfig.sail_only()``), and the environment ignores any controller's propeller command (level 0).
 

@@ -32,7 +32,10 @@ def parser() -> argparse.ArgumentParser:
     parser.add_argument("--no-autopilot", action="store_true", help="sail the policy only")
     parser.add_argument("--autopilot", choices=("line", "legacy"), default="line",
                         help="the classical controller, named 'autopilot' in the results: line, the line follower "
-                             "of Jaulin and Le Bars (default), or legacy, the line-of-sight autopilot")
+                             "of Jaulin and Le Bars (default), or legacy, the line-of-sight autopilot; on the "
+                             "WAM-V's tasks line is the default baseline (station keeping in transit, back-and-fill "
+                             "and holding modes; LOS through the gates clear of the buoys) and legacy the earlier "
+                             "(PID station keeping; LOS along the legs), each named as it is")
     parser.add_argument("--runs", type=int, default=20,
                         help="runs per controller: missions, or episodes of a waypoint task (default 20)")
     parser.add_argument("--sea-state", type=float, default=None, metavar="HS",

@@ -12,8 +12,13 @@
 For the WAM-V (two stern thrusters, fixed or azimuthing), batched in torch:
 
 - ``station_keeping``: ``StationKeepingController`` and ``StationKeepingConfig``, PID station keeping on the
-  goal pose, the baseline of VRX's station-keeping task;
+  goal pose, the earlier baseline of VRX's station-keeping task;
 - ``los_guidance``: ``LosGuidanceController`` and ``LosGuidanceConfig``, line-of-sight guidance along the
-  route, the baseline of VRX's wayfinding and follow-path tasks;
+  route, the earlier baseline of VRX's wayfinding and follow-path tasks;
+- ``pivot_station_keeping``: ``PivotStationKeepingController`` and ``PivotStationKeepingConfig``, station keeping
+  for fixed thrusters in transit, back-and-fill and holding modes, the default baseline of VRX's station-keeping
+  and wayfinding tasks;
+- ``gate_guidance``: ``GateGuidanceController`` and ``GateGuidanceConfig``, LOS guidance through the gates along
+  their axes, clear of the buoys by collision cones, the default baseline of VRX's follow-path task;
 - ``thrust_allocation``: ``ThrusterLayout`` and the force and moment -> thruster actions mappings they share.
 """

@@ -24,7 +24,7 @@ import torch
 
 from ocean_warp.validation import require_non_negative, require_positive
 
-from .thrust_allocation import ThrusterLayout, azimuth_thrust, differential_thrust, wrap_angle, yaw_of
+from .thrust_allocation import ThrusterLayout, aft_thrust, integrate_clipped, wrap_angle, yaw_of
 
 __all__ = ["LosGuidanceConfig", "LosGuidanceController"]
 
@@ -114,12 +114,8 @@ class LosGuidanceController:
         last = index >= b.route.shape[1] - 1
         speed = torch.where(last, (c.approach_gain * distance).clamp(max=c.cruise_speed), speed)
         speed_error = speed * torch.cos(heading_error).clamp(min=0.0) - u
-        bound = c.integral_limit / c.speed_i if c.speed_i > 0.0 else 0.0
-        self._speed_integral = (self._speed_integral + speed_error * dt).clamp(-bound, bound)
+        self._speed_integral = integrate_clipped(self._speed_integral, speed_error, c.speed_i, c.integral_limit, dt)
         surge = c.speed_p * speed_error + c.speed_i * self._speed_integral
 
-        if env.num_actions == 4:
-            actions = azimuth_thrust(surge, torch.zeros_like(surge), moment, c.thrusters)
-        else:
-            actions = differential_thrust(surge, moment, c.thrusters)
+        actions = aft_thrust(surge, moment, env.num_actions, c.thrusters)
         b.actions[:, : actions.shape[1]].copy_(actions)

@@ -42,7 +42,8 @@ import torch
 
 from ocean_warp.validation import require_non_negative, require_positive
 
-from .thrust_allocation import ThrusterLayout, azimuth_thrust, body_error, differential_thrust, wrap_angle, yaw_of
+from .thrust_allocation import (ThrusterLayout, azimuth_thrust, body_error, differential_thrust, integrate_clipped,
+                                wrap_angle, yaw_of)
 
 __all__ = ["StationKeepingConfig", "StationKeepingController", "WAMV_STATION_KEEPING"]
 
@@ -121,12 +122,6 @@ class StationKeepingConfig:
             raise ValueError(f"{owner}.thrusters must be a ThrusterLayout, got {self.thrusters!r}")
 
 
-def _integrate(integral: torch.Tensor, error: torch.Tensor, gain: float, limit: float, dt: float) -> torch.Tensor:
-    """The integral of ``error`` one step on, clipped so that gain x integral stays within +-limit."""
-    bound = limit / gain if gain > 0.0 else 0.0
-    return (integral + error * dt).clamp(-bound, bound)
-
-
 class StationKeepingController:
     """PID station keeping of every boat of a batch on its goal pose (the module's docstring gives the law);
     the evaluation's ``Controller``: reads ``env.buffers``, writes ``env.buffers.actions`` (N, A), A = 2
@@ -194,20 +189,21 @@ class StationKeepingController:
         speed_ref = (c.approach_gain * to_go).clamp(max=c.transit_speed)
         speed_ref = speed_ref * torch.cos(heading_error).clamp(min=0.0)
         speed_error = speed_ref - u
-        s["speed"] = torch.where(holding, 0.0, _integrate(s["speed"], speed_error, c.speed_i, c.integral_limit, dt))
+        speed_integral = integrate_clipped(s["speed"], speed_error, c.speed_i, c.integral_limit, dt)
+        s["speed"] = torch.where(holding, 0.0, speed_integral)
         transit_surge = c.speed_p * speed_error + c.speed_i * s["speed"]
 
         # holding: PID on the offset ahead (and to port)
-        s["surge"] = torch.where(holding, _integrate(s["surge"], ahead, c.surge_i, c.integral_limit, dt), 0.0)
+        s["surge"] = torch.where(holding, integrate_clipped(s["surge"], ahead, c.surge_i, c.integral_limit, dt), 0.0)
         hold_surge = c.surge_p * ahead + c.surge_i * s["surge"] - c.surge_d * u
         surge = torch.where(holding, hold_surge, transit_surge)
 
-        s["heading"] = torch.where(holding, _integrate(s["heading"], heading_error, c.heading_i, c.integral_limit,
-                                                       dt), 0.0)
+        heading_integral = integrate_clipped(s["heading"], heading_error, c.heading_i, c.integral_limit, dt)
+        s["heading"] = torch.where(holding, heading_integral, 0.0)
         moment = c.heading_p * heading_error + c.heading_i * s["heading"] - c.heading_d * r
 
         if azimuth:
-            s["sway"] = torch.where(holding, _integrate(s["sway"], port, c.sway_i, c.integral_limit, dt), 0.0)
+            s["sway"] = torch.where(holding, integrate_clipped(s["sway"], port, c.sway_i, c.integral_limit, dt), 0.0)
             sway = torch.where(holding, c.sway_p * port + c.sway_i * s["sway"] - c.sway_d * v, 0.0)
             actions = azimuth_thrust(surge, sway, moment, c.thrusters)
         else:

@@ -11,7 +11,8 @@ import torch
 
 from ocean_warp.validation import require_in_range, require_positive
 
-__all__ = ["ThrusterLayout", "yaw_of", "wrap_angle", "body_error", "differential_thrust", "azimuth_thrust"]
+__all__ = ["ThrusterLayout", "yaw_of", "wrap_angle", "body_error", "differential_thrust", "azimuth_thrust",
+           "aft_thrust", "integrate_clipped"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -95,3 +96,19 @@ def azimuth_thrust(surge: torch.Tensor, sway: torch.Tensor, yaw_moment: torch.Te
         angles.append(angle.clamp(-layout.azimuth_limit, layout.azimuth_limit) / layout.azimuth_limit)
         thrusts.append(_action_of_thrust(thrust, layout))
     return torch.stack(thrusts + angles, dim=-1)
+
+
+def aft_thrust(surge: torch.Tensor, yaw_moment: torch.Tensor, num_actions: int, layout: ThrusterLayout) -> torch.Tensor:
+    """(N, A) actions for a surge force [N] and a yaw moment [N m] with the thrust along the hulls: fixed thrusters
+    (A = 2, ``differential_thrust``), or azimuth ones (A = 4) held straight aft (``azimuth_thrust`` without sway)."""
+    if num_actions == 4:
+        return azimuth_thrust(surge, torch.zeros_like(surge), yaw_moment, layout)
+    return differential_thrust(surge, yaw_moment, layout)
+
+
+def integrate_clipped(integral: torch.Tensor, error: torch.Tensor, gain: float, limit: float,
+                      dt: float) -> torch.Tensor:
+    """The integral of ``error`` one step of ``dt`` [s] on, clipped so that gain x integral stays within +-limit
+    (anti-windup); zero where the gain is zero."""
+    bound = limit / gain if gain > 0.0 else 0.0
+    return (integral + error * dt).clamp(-bound, bound)

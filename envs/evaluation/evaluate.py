@@ -19,7 +19,9 @@ from ..sailing_env import SailingEnv
 from ..vrx.task_config import VrxTask, VrxTaskConfig
 from ..tasks.task_configs import TaskConfig
 from ..training.policy_io import Policy, load_policy
+from ..controllers.gate_guidance import GateGuidanceController
 from ..controllers.los_guidance import LosGuidanceController
+from ..controllers.pivot_station_keeping import PivotStationKeepingController
 from ..controllers.station_keeping import WAMV_STATION_KEEPING, StationKeepingController
 from .controllers import AutopilotController, PolicyController
 from .presets import evaluation_task
@@ -77,7 +79,7 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     task = DEFAULT_TASK if task is None else task
     resolved = make_task_config(task) if isinstance(task, str) else task
     if autopilot is not False and autopilot is not None and isinstance(resolved, VrxTaskConfig):
-        controllers.append(vrx_baseline(resolved))
+        controllers.append(vrx_baseline(resolved, autopilot))
     elif autopilot is not False and autopilot is not None:
         if isinstance(autopilot, str):
             controllers.append(AutopilotController(autopilot=autopilot))
@@ -110,13 +112,16 @@ def evaluate_mission(policy: Policy | str | os.PathLike | None = None, runs: int
     return MissionEvaluation(task=config, settings=settings, results=results)
 
 
-def vrx_baseline(task: VrxTaskConfig):
-    """The classical controller of one of VRX's tasks: PID station keeping for station keeping and for wayfinding
-    (each goal is a pose to reach, held until the env shows the next), line-of-sight guidance through the gates of
-    the path."""
+def vrx_baseline(task: VrxTaskConfig, autopilot: bool | str = True):
+    """The classical controller of one of VRX's tasks. By default (``autopilot`` True or "line"): station keeping
+    in transit, back-and-fill and holding modes for station keeping and for wayfinding (each goal is a pose to
+    reach, held until the env shows the next), LOS guidance through the gates clear of the buoys for the path.
+    ``autopilot`` "legacy": the earlier baselines, PID station keeping (``WAMV_STATION_KEEPING``) and LOS guidance
+    along the legs, blind to the buoys."""
+    legacy = autopilot == "legacy"
     if task.kind is VrxTask.FOLLOW_PATH:
-        return LosGuidanceController()
-    return StationKeepingController(WAMV_STATION_KEEPING)
+        return LosGuidanceController() if legacy else GateGuidanceController()
+    return StationKeepingController(WAMV_STATION_KEEPING) if legacy else PivotStationKeepingController()
 
 
 def _logging_callbacks(log, env: SailingEnv, name: str) -> dict:

@@ -53,17 +53,20 @@ class Plant:
         self.eta[:, 2] = np.remainder(self.eta[:, 2] + np.pi, 2 * np.pi) - np.pi
 
 
-def fake_env(plant, num_actions, targets, route=None, decision_period=0.2):
-    """A stand-in for a ``BatchedEnv`` around ``plant``: buffers of torch tensors (CPU), the sizes."""
+def fake_env(plant, num_actions, targets, route=None, decision_period=0.2, obstacles=None, gate_width=20.0):
+    """A stand-in for a ``BatchedEnv`` around ``plant``: buffers of torch tensors (CPU), the sizes; ``obstacles``
+    (N, K, 4) buoys x, y from the origin, radius, kind (default none); a task of gates ``gate_width`` [m] wide."""
     n = len(plant.eta)
     route = np.zeros((n, 1, 3)) if route is None else route
+    obstacles = np.zeros((n, 0, 4)) if obstacles is None else obstacles
     buffers = SimpleNamespace(
         actions=torch.zeros(n, num_actions), position=torch.zeros(n, 3), orientation=torch.zeros(n, 4),
         velocity=torch.zeros(n, 6), target=torch.tensor(np.asarray(targets), dtype=torch.float32),
         origin=torch.zeros(n, 3), route=torch.tensor(route, dtype=torch.float32),
-        waypoint_index=torch.zeros(n, dtype=torch.int32), done=torch.zeros(n, dtype=torch.bool))
+        waypoint_index=torch.zeros(n, dtype=torch.int32), done=torch.zeros(n, dtype=torch.bool),
+        obstacles=torch.tensor(np.asarray(obstacles), dtype=torch.float32))
     env = SimpleNamespace(buffers=buffers, num_envs=n, num_actions=num_actions, torch_device=torch.device("cpu"),
-                          decision_period=decision_period)
+                          decision_period=decision_period, task=SimpleNamespace(gate_width=gate_width))
     sync(env, plant)
     return env
 

@@ -195,18 +195,20 @@ def test_final_score_is_vrx_rule_over_the_episode(vessel, device, rng, kind, goa
         assert np.abs(once_a_decision - rule(errors)).max() > 1e-2
 
 
-@pytest.mark.parametrize("task_id, baseline", [("WamvStationKeeping-v0", "pid-station-keeping"),
-                                               ("WamvWayfinding-v0", "pid-station-keeping"),
-                                               ("WamvFollowPath-v0", "los-guidance")])
-def test_eval_of_a_vrx_task_writes_vrx_scores(task_id, baseline, tmp_path):
-    """``ocean-warp eval --task <VRX task>``: the shipped policy and the task's classical baseline, each run's VRX
-    score in runs.csv and their mean per controller in results.csv."""
+@pytest.mark.parametrize("task_id, autopilot, baseline", [
+    ("WamvStationKeeping-v0", "line", "pivot-station-keeping"), ("WamvWayfinding-v0", "line", "pivot-station-keeping"),
+    ("WamvFollowPath-v0", "line", "gate-guidance"), ("WamvStationKeeping-v0", "legacy", "pid-station-keeping"),
+    ("WamvFollowPath-v0", "legacy", "los-guidance")])
+def test_eval_of_a_vrx_task_writes_vrx_scores(task_id, autopilot, baseline, tmp_path):
+    """``ocean-warp eval --task <VRX task>``: the shipped policy and the task's classical baseline (the new one by
+    default, the earlier with ``--autopilot legacy``), each run's VRX score in runs.csv and their mean per controller
+    in results.csv."""
     import csv
 
     from ocean_warp.envs.apps.evaluation import main
 
     assert main(["--task", task_id, "--runs", "2", "--time-limit", "3", "--out", str(tmp_path), "--no-progress",
-                 "--device", "cpu"]) == 0
+                 "--device", "cpu", "--autopilot", autopilot]) == 0
     with open(tmp_path / "results.csv") as handle:
         table = {row["controller"]: row for row in csv.DictReader(handle)}
     with open(tmp_path / "runs.csv") as handle:
