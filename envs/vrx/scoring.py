@@ -10,7 +10,7 @@ import warp as wp
 
 from ..tasks.vrx_scoring import FollowPathScore, StationKeepingScore, WayfindingScore
 from .task_config import VrxTask
-from .vrx_kernels import vrx_path_inputs
+from .vrx_kernels import vrx_contact, vrx_gate_buoys
 
 __all__ = ["VrxScorer"]
 
@@ -18,7 +18,8 @@ __all__ = ["VrxScorer"]
 class VrxScorer:
     """The score of ``env``'s task: ``launch_sample`` after every physics step, ``launch_finish`` after each
     decision's rewards (before the same-step reset; it writes the ended episodes' scores and starts their next),
-    ``launch_reset`` when every episode restarts without a score (``env.reset``). Launches only (graph-safe)."""
+    ``launch_courses`` once new episodes drew their goals, ``launch_reset`` when every episode restarts without a
+    score (``env.reset``). Launches only (graph-safe)."""
 
     def __init__(self, env, gate_half_width: float):
         n, device, task = env.num_envs, env.device, env.task
@@ -44,10 +45,16 @@ class VrxScorer:
         elif self.kind is VrxTask.WAYFINDING:
             self.rule.update(state.position, state.orientation, env.origin, env.route)
         else:
-            wp.launch(vrx_path_inputs, dim=self.gates.shape, device=env.device,
-                      inputs=[env.route, self.half_width, state.status], outputs=[self.gates, self.contact])
+            wp.launch(vrx_contact, dim=env.num_envs, device=env.device, inputs=[state.status], outputs=[self.contact])
             self.rule.update(state.position, env.origin, self.gates, self.contact,
                              env.decision_period / env.steps_per_decision)
+
+    def launch_courses(self, env) -> None:
+        """The path's gates from ``env.route`` (after the goals of new episodes were drawn); nothing for the other
+        tasks."""
+        if self.kind is VrxTask.FOLLOW_PATH:
+            wp.launch(vrx_gate_buoys, dim=self.gates.shape, device=env.device,
+                      inputs=[env.route, self.half_width], outputs=[self.gates])
 
     def launch_finish(self, env) -> None:
         """The scores of the episodes that ended in the decision (``env.done``) into ``env.final_score``."""

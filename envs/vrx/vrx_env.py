@@ -145,6 +145,7 @@ class VrxEnv(BatchedVesselEnv):
         wp.launch(vrx_draw_starts, dim=self.num_envs, device=self.device,
                   inputs=[self.parameters, self.start_distribution, self._seed, self.first_env, mask, self._course,
                           self._start_rows])
+        self.scorer.launch_courses(self)
         self._draw_components(mask, self._course)
         self.simulator.reset_masked(mask)
 

@@ -21,7 +21,7 @@ from .reward_terms import VRX_REWARD_TERMS, effort_cost, error_cost, flagged_pen
 
 __all__ = ["VrxParameters", "VrxStartDistribution", "VrxCourse", "VesselStartRows", "STATION_KEEPING",
            "WAYFINDING", "FOLLOW_PATH", "POLICY_BASE", "PRIVILEGED", "pose_error", "gate_buoy", "vrx_evaluate_kernel",
-           "vrx_observe", "vrx_draw_starts", "vrx_path_inputs"]
+           "vrx_observe", "vrx_draw_starts", "vrx_gate_buoys", "vrx_contact"]
 
 STATION_KEEPING = wp.constant(0)
 WAYFINDING = wp.constant(1)
@@ -419,12 +419,10 @@ def vrx_draw_starts(
                 else:
                     leg = bearing
         bearing = leg
-        x = previous[0] + distance * wp.cos(bearing)
-        y = previous[1] + distance * wp.sin(bearing)
-        if p.kind == FOLLOW_PATH:
-            goal_heading = bearing
-        course.route[env, g] = wp.vec3(x, y, goal_heading)
-        previous = wp.vec3(x, y, 0.0)
+        previous = leg_end(previous, distance, bearing)  # a gate faces along its leg
+        if p.kind != FOLLOW_PATH:
+            previous = wp.vec3(previous[0], previous[1], goal_heading)
+        course.route[env, g] = previous
     origin = course.origin[env]
     rows.position[env] = origin + wp.vec3(0.0, 0.0, start.start_height)
     rows.orientation[env] = wp.quat_from_axis_angle(wp.vec3(0.0, 0.0, 1.0), heading)
@@ -460,20 +458,18 @@ def vrx_draw_starts(
 
 
 @wp.kernel(enable_backward=False)
-def vrx_path_inputs(
-    route: wp.array2d(dtype=wp.vec3),
-    half_width: float,
-    status: wp.array(dtype=int),
-    gates: wp.array2d(dtype=wp.vec4),
-    contact: wp.array(dtype=wp.bool),
-):
-    """The follow-the-path score's inputs: each gate's red (starboard) and green (port) buoy x, y from the origin
-    [m] (the gate's centre -+ ``half_width`` across the heading it is passed in), and whether the boat touches an
-    obstacle now (its COLLIDED flag)."""
+def vrx_gate_buoys(route: wp.array2d(dtype=wp.vec3), half_width: float, gates: wp.array2d(dtype=wp.vec4)):
+    """The follow-the-path score's gates: each gate's red (starboard) and green (port) buoy x, y from the origin
+    [m] (the gate's centre -+ ``half_width`` across the heading it is passed in)."""
     env, g = wp.tid()
     gate = route[env, g]
     red = gate_buoy(gate, -1.0, half_width)
     green = gate_buoy(gate, 1.0, half_width)
     gates[env, g] = wp.vec4(red[0], red[1], green[0], green[1])
-    if g == 0:
-        contact[env] = (status[env] & STATUS_COLLIDED) != 0
+
+
+@wp.kernel(enable_backward=False)
+def vrx_contact(status: wp.array(dtype=int), contact: wp.array(dtype=wp.bool)):
+    """Whether each boat touches an obstacle now (its COLLIDED flag), for the follow-the-path score."""
+    env = wp.tid()
+    contact[env] = (status[env] & STATUS_COLLIDED) != 0

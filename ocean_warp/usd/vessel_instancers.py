@@ -14,34 +14,11 @@ from __future__ import annotations
 import numpy as np
 from pxr import Gf, Sdf, UsdGeom, Vt
 
+from ..frames import about_z, quaternion_multiply, quaternion_rotate
 from .paths import BOAT_ORIGINS_ATTRIBUTE, FLEET
 from .vessel_prims import define_fleet_prim, part_angles, prim_name
 
-__all__ = ["InstancedVesselWriter", "quaternion_multiply", "quaternion_rotate", "about_z"]
-
-
-def quaternion_multiply(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(N, 4) Hamilton products a b of (N, 4) quaternions (x, y, z, w): rotate by b, then by a."""
-    ax, ay, az, aw = np.moveaxis(a, -1, 0)
-    bx, by, bz, bw = np.moveaxis(b, -1, 0)
-    return np.stack([aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx,
-                     aw * bz + ax * by - ay * bx + az * bw,
-                     aw * bw - ax * bx - ay * by - az * bz], axis=-1)
-
-
-def quaternion_rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """(N, 3) vectors v (N, 3) or (3,) rotated by unit quaternions q (N, 4) (x, y, z, w)."""
-    u, w = q[:, :3], q[:, 3:]
-    t = 2.0 * np.cross(u, np.broadcast_to(v, u.shape))
-    return v + w * t + np.cross(u, t)
-
-
-def about_z(angle: np.ndarray) -> np.ndarray:
-    """(N, 4) quaternions (x, y, z, w) of rotations by ``angle`` (N,) [rad] about z."""
-    half = 0.5 * np.asarray(angle, dtype=np.float64)
-    zeros = np.zeros_like(half)
-    return np.stack([zeros, zeros, np.sin(half), np.cos(half)], axis=-1)
+__all__ = ["InstancedVesselWriter"]
 
 
 class InstancedVesselWriter:
