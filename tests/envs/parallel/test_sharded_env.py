@@ -22,16 +22,10 @@ from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 from ocean_warp.envs.parallel.sharded import ShardedSailingEnv, shard_bounds
 from ocean_warp.envs.tasks.task_configs import AvoidConfig
 from ocean_warp.sensors import SensorConfig
+from tests.env_buffers import bit_equal, sail_in_lockstep
 
 COMPARED = tuple(field.name for field in dataclasses.fields(EnvBuffers))
 """Every buffer of the batched-env protocol."""
-
-
-def bit_equal(a: torch.Tensor, b: torch.Tensor) -> bool:
-    """Equal shapes and values, NaN equal to NaN (a score a task does not keep is NaN in both)."""
-    return a.shape == b.shape and a.dtype == b.dtype and bool(torch.equal(a, b) or (
-        a.is_floating_point() and torch.equal(torch.isnan(a), torch.isnan(b))
-        and torch.equal(torch.nan_to_num(a, nan=0.0), torch.nan_to_num(b, nan=0.0))))
 
 
 def fast_config(**changes) -> WaypointConfig:
@@ -100,17 +94,7 @@ def test_sharded_env_matches_one_process_step_for_step():
     with ShardedSailingEnv(task, 5, workers=2, seed=7) as sharded:
         assert isinstance(single, BatchedEnv) and isinstance(sharded, BatchedEnv)
         assert not hasattr(sharded, "simulator")  # nothing reaches through it
-        resets = 0
-        for step in range(12):
-            if step == 8:
-                single.reset(seed=3)
-                sharded.reset(seed=3)
-            actions = 2.0 * torch.rand(5, 3, generator=generator) - 1.0
-            single.step(actions)
-            sharded.step(actions)
-            resets += int(single.buffers.done.sum())
-            for name in COMPARED:
-                assert bit_equal(getattr(single.buffers, name), getattr(sharded.buffers, name)), (step, name)
+        resets = sail_in_lockstep(single, sharded, generator, steps=12, reset_step=8, reset_seed=3)
         assert resets >= 10, "the comparison must cross same-step resets"
         log, expected = sharded.episode_log(), single.episode_log()
         assert log.keys() == expected.keys() and all(torch.equal(log[k], expected[k]) for k in log)
@@ -128,15 +112,7 @@ def test_an_obstacle_course_over_workers_matches_one_process():
     generator = torch.Generator().manual_seed(2)
     with ShardedSailingEnv(task, 5, workers=2, seed=4) as sharded:
         assert sharded.buffers.obstacles.shape == (5, 12, 4) and sharded.buffers.policy_obs.shape == (5, 5 + 1 + 24)
-        for step in range(5):
-            if step == 3:
-                single.reset(seed=8)
-                sharded.reset(seed=8)
-            actions = 2.0 * torch.rand(5, 3, generator=generator) - 1.0
-            single.step(actions)
-            sharded.step(actions)
-            for name in COMPARED:
-                assert bit_equal(getattr(single.buffers, name), getattr(sharded.buffers, name)), (step, name)
+        sail_in_lockstep(single, sharded, generator, steps=5, reset_step=3, reset_seed=8)
         assert bool((single.buffers.obstacles[:, :, 3] > 0).any())
 
 

@@ -12,11 +12,10 @@ from gymnasium.utils.env_checker import check_env
 
 from ocean_warp.envs.interfaces.rsl_rl_env import RslRlVecEnv
 from ocean_warp.envs.parallel.sharded import ShardedSailingEnv
-from ocean_warp.envs.protocol import EnvBuffers
 from ocean_warp.envs.registration import make_task_config
 from ocean_warp.envs.vrx import VrxEnv
 
-from ..parallel.test_sharded_env import bit_equal
+from tests.env_buffers import sail_in_lockstep
 
 
 def short_wayfinding(**changes):
@@ -74,20 +73,9 @@ def test_a_wamv_task_over_workers_matches_one_process():
     task = short_wayfinding()
     single = VrxEnv(task, 4, device="cpu", seed=5)
     generator = torch.Generator().manual_seed(1)
-    names = [field.name for field in dataclasses.fields(EnvBuffers)]
     with ShardedSailingEnv(task, 4, workers=2, seed=5) as sharded:
         assert sharded.num_actions == 2 and sharded.buffers.actions.shape == (4, 2)
-        resets = 0
-        for step in range(12):
-            if step == 9:
-                single.reset(seed=2)
-                sharded.reset(seed=2)
-            actions = 2.0 * torch.rand(4, 2, generator=generator) - 1.0
-            single.step(actions)
-            sharded.step(actions)
-            resets += int(single.buffers.done.sum())
-            for name in names:
-                assert bit_equal(getattr(single.buffers, name), getattr(sharded.buffers, name)), (step, name)
+        resets = sail_in_lockstep(single, sharded, generator, steps=12, reset_step=9, reset_seed=2)
         assert resets >= 4
         assert np.isfinite(single.buffers.policy_obs.numpy()).all()
 
